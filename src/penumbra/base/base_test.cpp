@@ -1,0 +1,102 @@
+#include "penumbra/base/error.h"
+#include "penumbra/base/memory_budget.h"
+#include "penumbra/base/parallel.h"
+#include "penumbra/base/ray.h"
+#include "penumbra/base/rng.h"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cmath>
+#include <vector>
+
+namespace penumbra {
+namespace {
+
+TEST(Ray, BoxIntervalMatchesHandComputedChord) {
+  const Box3 box{vec3(-1.0f), vec3(1.0f)};
+  const Interval i = intersect_box(Ray{vec3(-5.0f, 0.0f, 0.0f), vec3(1.0f, 0.0f, 0.0f)}, box, 0.0f, kInfinity);
+  EXPECT_FLOAT_EQ(i.t0, 4.0f);
+  EXPECT_FLOAT_EQ(i.t1, 6.0f);
+}
+
+TEST(Ray, AxisParallelRayOnTheBoxFaceHasNoNaN) {
+  const Box3 box{vec3(0.0f), vec3(1.0f)};
+  // Origin exactly on the lower y and z faces, direction along x.
+  const Interval i = intersect_box(Ray{vec3(-1.0f, 0.0f, 0.0f), vec3(1.0f, 0.0f, 0.0f)}, box, 0.0f, kInfinity);
+  EXPECT_FALSE(i.empty());
+  EXPECT_FLOAT_EQ(i.t0, 1.0f);
+  EXPECT_FLOAT_EQ(i.t1, 2.0f);
+  const Interval miss = intersect_box(Ray{vec3(-1.0f, 2.0f, 0.5f), vec3(1.0f, 0.0f, 0.0f)}, box, 0.0f, kInfinity);
+  EXPECT_TRUE(miss.empty());
+}
+
+TEST(Ray, RayStartingInsideTheBoxStartsAtTMin) {
+  const Box3 box{vec3(-1.0f), vec3(1.0f)};
+  const Interval i = intersect_box(Ray{vec3(0.0f), glm::normalize(vec3(1.0f, 1.0f, 0.0f))}, box, 0.0f, kInfinity);
+  EXPECT_FLOAT_EQ(i.t0, 0.0f);
+  EXPECT_NEAR(i.t1, std::sqrt(2.0f), 1e-6f);
+}
+
+TEST(Ray, ClipIntervalKeepsThePositiveHalfSpace) {
+  const vec4 plane(0.0f, 0.0f, 1.0f, -0.25f);  // keeps z >= 0.25
+  const Ray ray{vec3(0.0f, 0.0f, -1.0f), vec3(0.0f, 0.0f, 1.0f)};
+  const Interval i = clip_interval(ray, &plane, 1, Interval{0.0f, 2.0f});
+  EXPECT_FLOAT_EQ(i.t0, 1.25f);
+  EXPECT_FLOAT_EQ(i.t1, 2.0f);
+  EXPECT_TRUE(inside_clip_planes(vec3(0.0f, 0.0f, 0.3f), &plane, 1));
+  EXPECT_FALSE(inside_clip_planes(vec3(0.0f, 0.0f, 0.2f), &plane, 1));
+  // A ray parallel to the plane on its clipped side is empty.
+  EXPECT_TRUE(clip_interval(Ray{vec3(0.0f), vec3(1.0f, 0.0f, 0.0f)}, &plane, 1, Interval{0.0f, 1.0f}).empty());
+}
+
+TEST(Pcg32, IsDeterministicAndUniform) {
+  Pcg32 a(42), b(42), c(43);
+  EXPECT_EQ(a.next_uint(), b.next_uint());
+  EXPECT_NE(a.next_uint(), c.next_uint());
+  Pcg32 rng(7);
+  double sum = 0.0, sum_sq = 0.0;
+  constexpr int kN = 200000;
+  for (int i = 0; i < kN; ++i) {
+    const float u = rng.next_float();
+    ASSERT_GE(u, 0.0f);
+    ASSERT_LT(u, 1.0f);
+    sum += u;
+    sum_sq += double(u) * u;
+  }
+  // Mean 1/2 and variance 1/12, within 5 standard errors.
+  EXPECT_NEAR(sum / kN, 0.5, 5.0 * std::sqrt(1.0 / 12.0 / kN));
+  EXPECT_NEAR(sum_sq / kN - (sum / kN) * (sum / kN), 1.0 / 12.0, 2e-3);
+}
+
+TEST(MemoryBudget, RejectsHugeAllocationsAndOverflow) {
+  EXPECT_THROW(check_memory_budget("test", memory_budget_bytes() + 1), OutOfMemoryBudget);
+  EXPECT_NO_THROW(check_memory_budget("test", 1024));
+  EXPECT_EQ(checked_product({1ull << 40, 1ull << 40}), std::numeric_limits<std::uint64_t>::max());
+  EXPECT_EQ(checked_product({3, 5, 7}), 105u);
+}
+
+TEST(Parallel, CoversEveryIndexExactlyOnce) {
+  std::vector<std::atomic<int>> hits(10007);
+  parallel_for(0, 10007, [&](std::int64_t a, std::int64_t b) {
+    for (std::int64_t i = a; i < b; ++i) hits[std::size_t(i)]++;
+  });
+  for (const auto& h : hits) ASSERT_EQ(h.load(), 1);
+  std::vector<std::atomic<int>> pixels(37 * 23);
+  parallel_for_tiles(37, 23, 8, [&](int x0, int y0, int x1, int y1) {
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x) pixels[std::size_t(y * 37 + x)]++;
+  });
+  for (const auto& p : pixels) ASSERT_EQ(p.load(), 1);
+}
+
+TEST(Parallel, ThreadCountCanBeLimited) {
+  set_thread_count(1);
+  EXPECT_EQ(thread_count(), 1);
+  set_thread_count(0);
+  EXPECT_GE(thread_count(), 1);
+  EXPECT_THROW(set_thread_count(-1), InvalidArgument);
+}
+
+}  // namespace
+}  // namespace penumbra

@@ -1,0 +1,10 @@
+#pragma once
+// PENUMBRA_HD marks code that runs per ray, per sample or per texel. It expands
+// to __host__ __device__ under nvcc and to nothing otherwise, so the CPU backend
+// and a later CUDA backend compile the same kernel source. Code marked with it
+// must not throw, allocate, call virtual functions or do I/O.
+#if defined(__CUDACC__)
+#define PENUMBRA_HD __host__ __device__
+#else
+#define PENUMBRA_HD
+#endif

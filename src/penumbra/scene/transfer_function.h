@@ -1,0 +1,108 @@
+#pragma once
+// Transfer function: scalar value -> (linear rgb, alpha), piecewise linear over
+// control points whose values are normalised to a range ("data" = the volume's
+// min..max over all frames, or explicit). alpha is the opacity of a slab of the
+// reference length unit_length; the extinction coefficient is
+//   sigma_t = -ln(1 - alpha) / unit_length * density_scale      (DESIGN.md 1)
+// with alpha clamped to kMaxAlpha. TransferFunctionTable bakes it for kernels.
+#include "penumbra/base/math.h"
+
+#include <optional>
+#include <vector>
+
+namespace penumbra {
+
+struct TransferFunctionPoint {
+  float value = 0.0f;  // normalised to the TF's range: 0 = range min, 1 = range max
+  vec3 color{1.0f};    // linear rgb
+  float alpha = 0.0f;  // opacity of a slab of unit_length
+};
+
+class TransferFunction {
+ public:
+  static constexpr float kMaxAlpha = 1.0f - 1e-6f;
+
+  // A grey ramp from transparent black at 0 to opaque white at 1.
+  TransferFunction();
+  // Sorts the points by value; throws InvalidArgument for no points, values or
+  // colours that are not finite, or alpha outside [0, 1].
+  explicit TransferFunction(std::vector<TransferFunctionPoint> points);
+
+  const std::vector<TransferFunctionPoint>& points() const { return points_; }
+
+  // Explicit value range in data units, or nullopt for "data".
+  const std::optional<vec2>& range() const { return range_; }
+  void set_range(std::optional<vec2> range);
+  // The range in data units given the volume's value range; a range of zero
+  // width is widened to [min, min + 1] so a constant volume maps to 0.
+  vec2 resolve_range(vec2 data_range) const;
+
+  // Reference length in world units; nullopt = the volume's smallest spacing.
+  const std::optional<float>& unit_length() const { return unit_length_; }
+  void set_unit_length(std::optional<float> unit_length);
+
+  float density_scale() const { return density_scale_; }
+  void set_density_scale(float scale);
+
+  // (rgb, alpha) at a normalised value; clamps to the end points outside them.
+  vec4 evaluate(float normalized) const;
+  // Largest alpha over the normalised interval [lo, hi] (exact: the function is
+  // piecewise linear, so the maximum is at an end or a control point).
+  float max_opacity(float lo, float hi) const;
+
+ private:
+  std::vector<TransferFunctionPoint> points_;
+  std::optional<vec2> range_;
+  std::optional<float> unit_length_;
+  float density_scale_ = 1.0f;
+};
+
+// The plain view kernels use: entries of (r, g, b, sigma_t) sampled uniformly
+// over the value range in data units, linearly interpolated.
+struct TransferFunctionView {
+  const vec4* entries = nullptr;
+  int size = 0;
+  float value_min = 0.0f;
+  float index_scale = 0.0f;  // (size - 1) / (value_max - value_min)
+
+  // (rgb, sigma_t per world unit) for a data value. NaN and +-inf are
+  // transparent; values outside the range take the end entries.
+  PENUMBRA_HD vec4 lookup(float value) const {
+    if (!is_finite(value)) return vec4(0.0f);
+    float x = (value - value_min) * index_scale;
+    x = x < 0.0f ? 0.0f : x;
+    const float last = float(size - 1);
+    x = x > last ? last : x;
+    int i = int(x);
+    i = i > size - 2 ? size - 2 : i;
+    const float f = x - float(i);
+    const vec4 a = entries[i];
+    const vec4 b = entries[i + 1];
+    return a + f * (b - a);
+  }
+};
+
+class TransferFunctionTable {
+ public:
+  static constexpr int kDefaultSize = 4096;
+
+  TransferFunctionTable() = default;
+  // value_range in data units (already resolved); unit_length in world units.
+  TransferFunctionTable(const TransferFunction& tf, vec2 value_range, float unit_length,
+                        int size = kDefaultSize);
+
+  TransferFunctionView view() const;
+  vec2 value_range() const { return value_range_; }
+
+  // Largest sigma_t a lookup can return for any value in [lo, hi] (data units):
+  // the maximum over the entries that interpolation between them can reach.
+  // Constant time (sparse table of maxima).
+  float max_extinction(float lo, float hi) const;
+
+ private:
+  std::vector<vec4> entries_;
+  vec2 value_range_{0.0f, 1.0f};
+  std::vector<std::vector<float>> max_levels_;  // max_levels_[k][i] = max sigma over [i, i + 2^k)
+};
+
+}  // namespace penumbra

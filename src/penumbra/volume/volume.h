@@ -1,0 +1,99 @@
+#pragma once
+// Volume: an owning grid of scalars of one voxel type, with spacing, origin and
+// one or more time steps (frames) that share the grid.
+#include "penumbra/base/math.h"
+#include "penumbra/base/ray.h"
+#include "penumbra/volume/volume_view.h"
+#include "penumbra/volume/voxel_type.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+namespace penumbra {
+
+struct ValueRange {
+  float min = 0.0f;
+  float max = 0.0f;
+  // Voxels that are NaN or +-inf; they are left out of min/max and sample as
+  // transparent (see TransferFunctionView::lookup).
+  std::uint64_t non_finite = 0;
+};
+
+class Volume {
+ public:
+  // Allocates dims.x * dims.y * dims.z voxels per frame after checking the
+  // memory budget; the voxels are uninitialised. Throws InvalidArgument for
+  // non-positive dims, spacing or frame count and OutOfMemoryBudget when too big.
+  Volume(ivec3 dims, VoxelType type, int frame_count = 1);
+
+  Volume(const Volume&) = delete;
+  Volume& operator=(const Volume&) = delete;
+  Volume(Volume&&) noexcept;
+  Volume& operator=(Volume&&) noexcept;
+  ~Volume();
+
+  ivec3 dims() const { return dims_; }
+  VoxelType type() const { return type_; }
+  int frame_count() const { return static_cast<int>(frames_.size()); }
+  std::uint64_t voxel_count() const;
+  std::uint64_t frame_bytes() const;
+  std::uint64_t total_bytes() const { return frame_bytes() * frames_.size(); }
+
+  vec3 spacing() const { return spacing_; }
+  void set_spacing(vec3 spacing);
+  // World position of voxel (0,0,0). Until set, the grid is centred at the
+  // world origin.
+  vec3 origin() const { return origin_; }
+  void set_origin(vec3 origin);
+  void center_at_origin();
+  Box3 world_box() const;
+
+  // Raw voxel bytes of one frame (x fastest, then y, then z). Writing through
+  // the non-const overload marks the value ranges stale.
+  std::byte* frame_data(int frame);
+  const std::byte* frame_data(int frame) const;
+
+  template <class T> T* frame_as(int frame) {
+    check_type(VoxelTypeOf<T>::value);
+    return reinterpret_cast<T*>(frame_data(frame));
+  }
+  template <class T> const T* frame_as(int frame) const {
+    check_type(VoxelTypeOf<T>::value);
+    return reinterpret_cast<const T*>(frame_data(frame));
+  }
+
+  // Value range of one frame and of all frames together (NaN/inf excluded).
+  ValueRange value_range(int frame) const;
+  ValueRange value_range() const;
+
+  // Voxel values of one frame as float, for analysis and tests.
+  float voxel(int frame, ivec3 index) const;
+
+  VolumeView view(int frame = 0) const;
+
+  // A free-form note on where the volume came from (file path, generator).
+  const std::string& source() const { return source_; }
+  void set_source(std::string source) { source_ = std::move(source); }
+
+ private:
+  void check_frame(int frame) const;
+  void check_type(VoxelType requested) const;
+  void update_ranges() const;
+
+  ivec3 dims_{0};
+  VoxelType type_ = VoxelType::UInt8;
+  vec3 spacing_{1.0f};
+  vec3 origin_{0.0f};
+  std::vector<std::unique_ptr<std::byte[]>> frames_;
+  std::string source_;
+
+  mutable std::mutex range_mutex_;
+  mutable bool ranges_stale_ = true;
+  mutable std::vector<ValueRange> ranges_;
+};
+
+}  // namespace penumbra
