@@ -1,1 +1,31 @@
-namespace penumbra {}
+#include "penumbra/techniques/registry.h"
+
+#include "penumbra/base/error.h"
+#include "penumbra/techniques/emission_absorption/emission_absorption.h"
+#include "penumbra/techniques/phong/phong.h"
+#include "penumbra/techniques/shadow_rays/shadow_rays.h"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+namespace penumbra {
+
+const std::vector<TechniqueInfo>& technique_registry() {
+  static const std::vector<TechniqueInfo> registry = {
+      emission_absorption_info(),
+      phong_info(),
+      shadow_rays_info(),
+  };
+  return registry;
+}
+
+const TechniqueInfo& find_technique(std::string_view name) {
+  std::vector<std::string> names;
+  for (const TechniqueInfo& info : technique_registry()) {
+    if (info.name == name) return info;
+    names.push_back(info.name);
+  }
+  throw InvalidArgument("technique", fmt::format("unknown technique '{}' (known: {})", name, fmt::join(names, ", ")));
+}
+
+}  // namespace penumbra

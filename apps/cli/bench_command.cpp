@@ -1,0 +1,138 @@
+// penumbra bench SCENE.json [--technique T]... [--param k=v]... [--frames N]
+// One JSON object per line per technique (DESIGN.md 4):
+//   tf_change_ms   prepare() after the TF changes (median of 3)
+//   light_move_ms  prepare() after every light moves by 2 degrees (median of 3)
+//   frame_ms_*     prepare() + render() per frame, the camera orbiting 2
+//                  degrees between frames (median and min of N)
+//   aux_bytes      the technique's own memory
+// plus samples_per_frame and samples_per_s (volume samples of viewing rays).
+#include "cli_common.h"
+#include "commands.h"
+
+#include "penumbra/base/parallel.h"
+#include "penumbra/techniques/registry.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+
+namespace penumbra::cli {
+namespace {
+
+struct BenchOptions {
+  SceneOptions scene;
+  std::vector<std::string> techniques;
+  int frames = 10;
+};
+
+using Clock = std::chrono::steady_clock;
+
+double elapsed_ms(Clock::time_point since) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - since).count();
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// Rotates a vector about the world z axis (directional lights) or a position
+// about the volume centre (point lights) by `degrees`.
+std::vector<Light> moved_lights(const std::vector<Light>& lights, vec3 center, float degrees) {
+  const float a = glm::radians(degrees);
+  const mat3 rot(std::cos(a), std::sin(a), 0.0f, -std::sin(a), std::cos(a), 0.0f, 0.0f, 0.0f, 1.0f);
+  std::vector<Light> out = lights;
+  for (Light& l : out) {
+    l.direction = rot * l.direction;
+    l.position = center + rot * (l.position - center);
+  }
+  return out;
+}
+
+// The same TF with a slightly different opacity, so the change is real.
+TransferFunction nudged_tf(const TransferFunction& tf, int round) {
+  std::vector<TransferFunctionPoint> points = tf.points();
+  for (TransferFunctionPoint& p : points) p.alpha = std::min(1.0f, p.alpha * (round % 2 ? 1.01f : 1.0f / 1.01f));
+  TransferFunction out(points);
+  out.set_range(tf.range());
+  out.set_unit_length(tf.unit_length());
+  out.set_density_scale(tf.density_scale());
+  return out;
+}
+
+void bench_technique(Scene scene, const TechniqueInfo& info, const BenchOptions& options) {
+  const ParameterValues params = resolve_parameters(scene, info, options.scene.params);
+  auto technique = info.create();
+  Image image;
+  technique->prepare(scene, params);
+  technique->render(scene, image);  // warm-up
+
+  constexpr int kRounds = 3;
+  std::vector<double> tf_ms, light_ms;
+  for (int round = 0; round < kRounds; ++round) {
+    scene.set_transfer_function(nudged_tf(scene.transfer_function(), round));
+    auto t0 = Clock::now();
+    technique->prepare(scene, params);
+    tf_ms.push_back(elapsed_ms(t0));
+    scene.set_lights(moved_lights(scene.lights(), scene.volume().world_box().center(), 2.0f));
+    t0 = Clock::now();
+    technique->prepare(scene, params);
+    light_ms.push_back(elapsed_ms(t0));
+  }
+
+  std::vector<double> frame_ms;
+  RenderStats stats;
+  for (int f = 0; f < options.frames; ++f) {
+    Camera camera = scene.camera();
+    camera.orbit(2.0f, 0.0f);
+    scene.set_camera(camera);
+    const auto t0 = Clock::now();
+    technique->prepare(scene, params);
+    technique->render(scene, image, &stats);
+    frame_ms.push_back(elapsed_ms(t0));
+  }
+  double total_ms = 0.0;
+  for (double ms : frame_ms) total_ms += ms;
+  const ivec3 d = scene.volume().dims();
+  const std::string volume = scene.volume_source().builtin.empty() ? scene.volume_source().file
+                                                                   : scene.volume_source().builtin;
+  fmt::print(
+      "{{\"technique\": \"{}\", \"volume\": \"{}\", \"dims\": [{}, {}, {}], \"image\": [{}, {}], "
+      "\"tf_change_ms\": {:.3f}, \"light_move_ms\": {:.3f}, \"frame_ms_median\": {:.3f}, \"frame_ms_min\": {:.3f}, "
+      "\"aux_bytes\": {}, \"threads\": {}, \"samples_per_frame\": {}, \"samples_per_s\": {:.4g}}}\n",
+      info.name, volume, d.x, d.y, d.z, scene.render().width, scene.render().height, median(tf_ms),
+      median(light_ms), median(frame_ms), *std::min_element(frame_ms.begin(), frame_ms.end()),
+      technique->aux_bytes(), thread_count(), stats.samples / std::uint64_t(options.frames),
+      total_ms > 0.0 ? double(stats.samples) / (total_ms * 1e-3) : 0.0);
+  std::fflush(stdout);
+}
+
+void run_bench(const BenchOptions& options) {
+  if (options.frames < 1) throw InvalidArgument("--frames", "must be at least 1");
+  const Scene scene = load_scene_for(options.scene);
+  std::vector<std::string> names = options.techniques;
+  if (names.empty()) names.push_back(scene.render().technique);
+  std::vector<const TechniqueInfo*> infos;
+  for (const std::string& n : names) infos.push_back(&find_technique(n));  // all names checked before any run
+  for (const TechniqueInfo* info : infos) bench_technique(scene, *info, options);
+}
+
+}  // namespace
+
+void add_bench_command(CLI::App& app) {
+  auto options = std::make_shared<BenchOptions>();
+  CLI::App* cmd = app.add_subcommand("bench", "time TF change, light move and frames; one JSON line per technique");
+  cmd->add_option("scene", options->scene.scene_file, "scene JSON file");
+  cmd->add_flag("--demo", options->scene.demo, "benchmark the built-in demo scene");
+  cmd->add_option("--technique", options->techniques, "technique to time (repeatable; default: the scene's)");
+  cmd->add_option("--param", options->scene.params, "technique parameter name=value or technique.name=value");
+  cmd->add_option("--frames", options->frames, "frames for the median (default 10)");
+  cmd->add_option("--size", options->scene.size, "image size WIDTHxHEIGHT (default: the scene's)");
+  cmd->callback([options] { run_bench(*options); });
+}
+
+}  // namespace penumbra::cli

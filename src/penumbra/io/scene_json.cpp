@@ -1,0 +1,444 @@
+#include "penumbra/io/scene_json.h"
+
+#include "penumbra/base/error.h"
+#include "penumbra/io/volume_reader.h"
+#include "penumbra/volume/procedural.h"
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <fstream>
+#include <initializer_list>
+#include <sstream>
+
+namespace penumbra {
+namespace {
+
+using nlohmann::json;
+
+std::string type_name(const json& j) {
+  if (j.is_number()) return "a number";
+  if (j.is_string()) return "a string";
+  if (j.is_boolean()) return "a boolean";
+  if (j.is_array()) return "an array";
+  if (j.is_object()) return "an object";
+  return "null";
+}
+
+// One JSON object being read: checks that every key it holds is known and
+// converts values with errors that name the full key path.
+class ObjectReader {
+ public:
+  ObjectReader(const json& j, std::string path, std::initializer_list<const char*> known) : j_(j), path_(std::move(path)) {
+    if (!j.is_object()) throw InvalidScene(path_.empty() ? "(root)" : path_, "expected an object, got " + type_name(j));
+    for (const auto& item : j.items()) {
+      bool ok = false;
+      for (const char* k : known) ok = ok || item.key() == k;
+      if (!ok) {
+        std::string list;
+        for (const char* k : known) list += fmt::format("{}{}", list.empty() ? "" : ", ", k);
+        throw InvalidScene(key(item.key()), fmt::format("unknown key (known here: {})", list));
+      }
+    }
+  }
+
+  std::string key(const std::string& name) const { return path_.empty() ? name : path_ + "." + name; }
+  bool has(const char* name) const { return j_.contains(name); }
+  const json& at(const char* name) const { return j_.at(name); }
+
+  float number(const char* name, float fallback) const {
+    if (!has(name)) return fallback;
+    return to_float(at(name), key(name));
+  }
+  int integer(const char* name, int fallback) const {
+    if (!has(name)) return fallback;
+    const json& v = at(name);
+    if (!v.is_number_integer()) throw InvalidScene(key(name), "expected an integer, got " + type_name(v));
+    const auto i = v.get<std::int64_t>();
+    if (i < -(1 << 30) || i > (1 << 30)) throw InvalidScene(key(name), "integer out of range");
+    return int(i);
+  }
+  bool boolean(const char* name, bool fallback) const {
+    if (!has(name)) return fallback;
+    const json& v = at(name);
+    if (!v.is_boolean()) throw InvalidScene(key(name), "expected true or false, got " + type_name(v));
+    return v.get<bool>();
+  }
+  std::string string(const char* name, const std::string& fallback) const {
+    if (!has(name)) return fallback;
+    const json& v = at(name);
+    if (!v.is_string()) throw InvalidScene(key(name), "expected a string, got " + type_name(v));
+    return v.get<std::string>();
+  }
+  vec3 vector3(const char* name, vec3 fallback) const {
+    if (!has(name)) return fallback;
+    return to_vec3(at(name), key(name));
+  }
+
+  static float to_float(const json& v, const std::string& key) {
+    if (!v.is_number()) throw InvalidScene(key, "expected a number, got " + type_name(v));
+    const double d = v.get<double>();
+    if (!std::isfinite(d) || std::abs(d) > 3.0e38) throw InvalidScene(key, "number out of range");
+    return float(d);
+  }
+  static vec3 to_vec3(const json& v, const std::string& key) {
+    if (!v.is_array() || v.size() != 3) throw InvalidScene(key, "expected an array of 3 numbers");
+    return vec3(to_float(v[0], key + "[0]"), to_float(v[1], key + "[1]"), to_float(v[2], key + "[2]"));
+  }
+
+ private:
+  const json& j_;
+  std::string path_;
+};
+
+std::filesystem::path resolve(const std::filesystem::path& base_dir, const std::string& file) {
+  const std::filesystem::path p(file);
+  return p.is_absolute() ? p : base_dir / p;
+}
+
+void read_volume_section(const json& j, const std::filesystem::path& base_dir, Scene& scene) {
+  const ObjectReader r(j, "volume", {"file", "builtin", "size", "time_step", "spacing", "origin"});
+  VolumeSource source;
+  std::shared_ptr<Volume> volume;
+  if (r.has("file") == r.has("builtin")) throw InvalidScene("volume", "give exactly one of \"file\" and \"builtin\"");
+  if (r.has("file")) {
+    if (r.has("size")) throw InvalidScene("volume.size", "only builtin volumes take a size");
+    source.file = r.string("file", "");
+    const std::filesystem::path path = resolve(base_dir, source.file);
+    if (!std::filesystem::exists(path)) throw IoError(path.string(), "volume file not found (volume.file)");
+    volume = read_volume(path);
+  } else {
+    source.builtin = r.string("builtin", "");
+    source.size = ivec3(kDefaultProceduralSize);
+    if (r.has("size")) {
+      const json& s = r.at("size");
+      if (!s.is_array() || s.size() != 3 || !s[0].is_number_integer() || !s[1].is_number_integer() ||
+          !s[2].is_number_integer()) {
+        throw InvalidScene("volume.size", "expected an array of 3 integers");
+      }
+      for (int a = 0; a < 3; ++a) {
+        const auto n = s[std::size_t(a)].get<std::int64_t>();
+        if (n < 2 || n > 4096) throw InvalidScene("volume.size", fmt::format("each size must be in [2, 4096], got {}", n));
+        source.size[a] = int(n);
+      }
+    }
+    try {
+      volume = make_procedural_volume(source.builtin, source.size);
+    } catch (const InvalidArgument& e) {
+      throw InvalidScene("volume." + e.name(), e.what());
+    }
+  }
+  if (r.has("spacing")) {
+    source.spacing = r.vector3("spacing", vec3(1.0f));
+    try {
+      volume->set_spacing(*source.spacing);
+    } catch (const InvalidArgument& e) {
+      throw InvalidScene("volume.spacing", e.what());
+    }
+    if (!r.has("origin")) volume->center_at_origin();
+  }
+  if (r.has("origin")) {
+    source.origin = r.vector3("origin", vec3(0.0f));
+    volume->set_origin(*source.origin);
+  }
+  const int time_step = r.integer("time_step", 0);
+  scene.set_volume(std::move(volume), time_step);
+  scene.set_volume_source(std::move(source));
+}
+
+void read_transfer_function(const json& j, Scene& scene) {
+  const ObjectReader r(j, "transfer_function", {"points", "range", "unit_length", "density_scale"});
+  TransferFunction tf;
+  if (r.has("points")) {
+    const json& pts = r.at("points");
+    if (!pts.is_array() || pts.empty()) throw InvalidScene("transfer_function.points", "expected a non-empty array");
+    std::vector<TransferFunctionPoint> points;
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      const std::string key = fmt::format("transfer_function.points[{}]", i);
+      const json& p = pts[i];
+      if (!p.is_array() || p.size() != 5) throw InvalidScene(key, "expected [value, r, g, b, alpha]");
+      TransferFunctionPoint point;
+      point.value = ObjectReader::to_float(p[0], key);
+      point.color = vec3(ObjectReader::to_float(p[1], key), ObjectReader::to_float(p[2], key),
+                         ObjectReader::to_float(p[3], key));
+      point.alpha = ObjectReader::to_float(p[4], key);
+      points.push_back(point);
+    }
+    try {
+      tf = TransferFunction(std::move(points));
+    } catch (const InvalidArgument& e) {
+      throw InvalidScene("transfer_function." + e.name(), e.what());
+    }
+  }
+  if (r.has("range")) {
+    const json& range = r.at("range");
+    if (range.is_string()) {
+      if (range.get<std::string>() != "data") {
+        throw InvalidScene("transfer_function.range", "expected \"data\" or [min, max]");
+      }
+    } else if (range.is_array() && range.size() == 2) {
+      const vec2 lo_hi(ObjectReader::to_float(range[0], "transfer_function.range"),
+                       ObjectReader::to_float(range[1], "transfer_function.range"));
+      if (!(lo_hi.x < lo_hi.y)) throw InvalidScene("transfer_function.range", "min must be below max");
+      tf.set_range(lo_hi);
+    } else {
+      throw InvalidScene("transfer_function.range", "expected \"data\" or [min, max], got " + type_name(range));
+    }
+  }
+  if (r.has("unit_length")) {
+    const float u = r.number("unit_length", 1.0f);
+    if (!(u > 0.0f)) throw InvalidScene("transfer_function.unit_length", "must be positive");
+    tf.set_unit_length(u);
+  }
+  const float density = r.number("density_scale", 1.0f);
+  if (!(density >= 0.0f)) throw InvalidScene("transfer_function.density_scale", "must be >= 0");
+  tf.set_density_scale(density);
+  scene.set_transfer_function(std::move(tf));
+}
+
+Camera read_camera(const json& j, const Box3& box) {
+  const ObjectReader r(j, "camera", {"eye", "target", "up", "fov_deg", "projection", "height"});
+  Camera c = Camera::framing(box);
+  c.target = r.vector3("target", c.target);
+  c.up = r.vector3("up", c.up);
+  c.fov_deg = r.number("fov_deg", c.fov_deg);
+  if (r.has("eye")) {
+    c.eye = r.vector3("eye", c.eye);
+  } else {
+    c.eye = c.target + (Camera::framing(box).eye - box.center());
+  }
+  const std::string projection = r.string("projection", "perspective");
+  if (projection == "perspective") {
+    c.projection = Projection::Perspective;
+  } else if (projection == "orthographic") {
+    c.projection = Projection::Orthographic;
+  } else {
+    throw InvalidScene("camera.projection", fmt::format("expected \"perspective\" or \"orthographic\", got \"{}\"", projection));
+  }
+  c.ortho_height = r.number("height", c.ortho_height);
+  return c;
+}
+
+std::vector<Light> read_lights(const json& j) {
+  if (!j.is_array()) throw InvalidScene("lights", "expected an array, got " + type_name(j));
+  std::vector<Light> lights;
+  for (std::size_t i = 0; i < j.size(); ++i) {
+    const std::string path = fmt::format("lights[{}]", i);
+    const ObjectReader r(j[i], path, {"type", "direction", "position", "color", "intensity"});
+    Light l;
+    const std::string type = r.string("type", "directional");
+    if (type == "directional") {
+      l.type = LightType::Directional;
+      if (r.has("position")) throw InvalidScene(path + ".position", "a directional light has a direction, not a position");
+      l.direction = r.vector3("direction", l.direction);
+    } else if (type == "point") {
+      l.type = LightType::Point;
+      if (r.has("direction")) throw InvalidScene(path + ".direction", "a point light has a position, not a direction");
+      if (!r.has("position")) throw InvalidScene(path + ".position", "a point light needs a position");
+      l.position = r.vector3("position", l.position);
+    } else {
+      throw InvalidScene(path + ".type", fmt::format("expected \"directional\" or \"point\", got \"{}\"", type));
+    }
+    l.color = r.vector3("color", l.color);
+    l.intensity = r.number("intensity", l.intensity);
+    lights.push_back(l);
+  }
+  return lights;
+}
+
+Material read_material(const json& j) {
+  const ObjectReader r(j, "material",
+                       {"albedo", "phase_g", "shading", "ambient", "diffuse", "specular", "shininess"});
+  Material m;
+  m.albedo = r.number("albedo", m.albedo);
+  m.phase_g = r.number("phase_g", m.phase_g);
+  const std::string shading = r.string("shading", "phase");
+  if (shading == "phase") {
+    m.shading = Shading::Phase;
+  } else if (shading == "phong") {
+    m.shading = Shading::Phong;
+  } else {
+    throw InvalidScene("material.shading", fmt::format("expected \"phase\" or \"phong\", got \"{}\"", shading));
+  }
+  m.ambient = r.number("ambient", m.ambient);
+  m.diffuse = r.number("diffuse", m.diffuse);
+  m.specular = r.number("specular", m.specular);
+  m.shininess = r.number("shininess", m.shininess);
+  return m;
+}
+
+RenderSettings read_render(const json& j) {
+  const ObjectReader r(j, "render", {"width", "height", "step", "technique", "params", "ert_threshold", "jitter"});
+  RenderSettings s;
+  s.width = r.integer("width", s.width);
+  s.height = r.integer("height", s.height);
+  s.step = r.number("step", s.step);
+  s.technique = r.string("technique", s.technique);
+  s.ert_threshold = r.number("ert_threshold", s.ert_threshold);
+  s.jitter = r.boolean("jitter", s.jitter);
+  if (r.has("params")) {
+    const json& p = r.at("params");
+    if (!p.is_object()) throw InvalidScene("render.params", "expected an object, got " + type_name(p));
+    for (const auto& item : p.items()) {
+      const json& v = item.value();
+      const std::string key = "render.params." + item.key();
+      if (v.is_boolean()) {
+        s.params[item.key()] = v.get<bool>();
+      } else if (v.is_number()) {
+        s.params[item.key()] = double(ObjectReader::to_float(v, key));
+      } else if (v.is_string()) {
+        s.params[item.key()] = v.get<std::string>();
+      } else {
+        throw InvalidScene(key, "expected a number, boolean or string, got " + type_name(v));
+      }
+    }
+  }
+  return s;
+}
+
+std::vector<Plane> read_planes(const json& j) {
+  if (!j.is_array()) throw InvalidScene("planes", "expected an array, got " + type_name(j));
+  std::vector<Plane> planes;
+  for (std::size_t i = 0; i < j.size(); ++i) {
+    const ObjectReader r(j[i], fmt::format("planes[{}]", i), {"point", "normal", "color"});
+    Plane p;
+    p.point = r.vector3("point", p.point);
+    p.normal = r.vector3("normal", p.normal);
+    p.color = r.vector3("color", p.color);
+    planes.push_back(p);
+  }
+  return planes;
+}
+
+std::vector<vec4> read_clip_planes(const json& j) {
+  if (!j.is_array()) throw InvalidScene("clip_planes", "expected an array, got " + type_name(j));
+  std::vector<vec4> planes;
+  for (std::size_t i = 0; i < j.size(); ++i) {
+    const std::string key = fmt::format("clip_planes[{}]", i);
+    const json& c = j[i];
+    if (!c.is_array() || c.size() != 4) throw InvalidScene(key, "expected [a, b, c, d]");
+    planes.emplace_back(ObjectReader::to_float(c[0], key), ObjectReader::to_float(c[1], key),
+                        ObjectReader::to_float(c[2], key), ObjectReader::to_float(c[3], key));
+  }
+  return planes;
+}
+
+// The default light when a scene names none: white, directional, from the
+// upper left front of the default camera.
+std::vector<Light> default_lights() {
+  Light l;
+  l.direction = glm::normalize(vec3(0.6f, 0.8f, -1.0f));
+  return {l};
+}
+
+}  // namespace
+
+Scene parse_scene(std::string_view json_text, const std::filesystem::path& base_dir) {
+  json j;
+  try {
+    j = json::parse(json_text);
+  } catch (const json::parse_error& e) {
+    throw InvalidScene("(root)", fmt::format("not valid JSON: {}", e.what()));
+  }
+  const ObjectReader r(j, "", {"version", "volume", "transfer_function", "camera", "lights", "material", "render",
+                              "planes", "clip_planes", "background"});
+  if (r.integer("version", 1) != 1) throw InvalidScene("version", "only scene version 1 is supported");
+  if (!r.has("volume")) throw InvalidScene("volume", "missing: a scene needs a volume (\"file\" or \"builtin\")");
+  Scene scene;
+  read_volume_section(r.at("volume"), base_dir, scene);
+  if (r.has("transfer_function")) {
+    read_transfer_function(r.at("transfer_function"), scene);
+  }
+  const Box3 box = scene.volume().world_box();
+  scene.set_camera(read_camera(r.has("camera") ? r.at("camera") : json::object(), box));
+  scene.set_lights(r.has("lights") ? read_lights(r.at("lights")) : default_lights());
+  if (r.has("material")) scene.set_material(read_material(r.at("material")));
+  if (r.has("render")) scene.set_render(read_render(r.at("render")));
+  if (r.has("planes")) scene.set_planes(read_planes(r.at("planes")));
+  if (r.has("clip_planes")) scene.set_clip_planes(read_clip_planes(r.at("clip_planes")));
+  if (r.has("background")) scene.set_background(r.vector3("background", vec3(0.0f)));
+  return scene;
+}
+
+Scene load_scene(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw IoError(path.string(), "cannot open scene file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_scene(text.str(), path.parent_path());
+}
+
+namespace {
+
+json to_json(vec3 v) { return json::array({v.x, v.y, v.z}); }
+
+}  // namespace
+
+std::string write_scene_json(const Scene& scene) {
+  json j;
+  j["version"] = 1;
+  const VolumeSource& src = scene.volume_source();
+  json volume;
+  if (!src.builtin.empty()) {
+    volume["builtin"] = src.builtin;
+    volume["size"] = json::array({src.size.x, src.size.y, src.size.z});
+  } else {
+    volume["file"] = src.file;
+  }
+  if (src.spacing) volume["spacing"] = to_json(*src.spacing);
+  if (src.origin) volume["origin"] = to_json(*src.origin);
+  volume["time_step"] = scene.time_step();
+  j["volume"] = volume;
+
+  const TransferFunction& tf = scene.transfer_function();
+  json points = json::array();
+  for (const TransferFunctionPoint& p : tf.points()) points.push_back({p.value, p.color.r, p.color.g, p.color.b, p.alpha});
+  json tf_json{{"points", points}, {"density_scale", tf.density_scale()}};
+  tf_json["range"] = tf.range() ? json::array({tf.range()->x, tf.range()->y}) : json("data");
+  if (tf.unit_length()) tf_json["unit_length"] = *tf.unit_length();
+  j["transfer_function"] = tf_json;
+
+  const Camera& c = scene.camera();
+  j["camera"] = {{"eye", to_json(c.eye)}, {"target", to_json(c.target)}, {"up", to_json(c.up)},
+                 {"fov_deg", c.fov_deg},
+                 {"projection", c.projection == Projection::Perspective ? "perspective" : "orthographic"},
+                 {"height", c.ortho_height}};
+  json lights = json::array();
+  for (const Light& l : scene.lights()) {
+    json lj{{"color", to_json(l.color)}, {"intensity", l.intensity}};
+    if (l.type == LightType::Directional) {
+      lj["type"] = "directional";
+      lj["direction"] = to_json(l.direction);
+    } else {
+      lj["type"] = "point";
+      lj["position"] = to_json(l.position);
+    }
+    lights.push_back(lj);
+  }
+  j["lights"] = lights;
+  const Material& m = scene.material();
+  j["material"] = {{"albedo", m.albedo},     {"phase_g", m.phase_g},
+                   {"shading", m.shading == Shading::Phase ? "phase" : "phong"},
+                   {"ambient", m.ambient},   {"diffuse", m.diffuse},
+                   {"specular", m.specular}, {"shininess", m.shininess}};
+  const RenderSettings& rs = scene.render();
+  json params = json::object();
+  for (const auto& [name, value] : rs.params) {
+    std::visit([&](const auto& v) { params[name] = v; }, value);
+  }
+  j["render"] = {{"width", rs.width},         {"height", rs.height}, {"step", rs.step},
+                 {"technique", rs.technique}, {"params", params},    {"ert_threshold", rs.ert_threshold},
+                 {"jitter", rs.jitter}};
+  json planes = json::array();
+  for (const Plane& p : scene.planes()) {
+    planes.push_back({{"point", to_json(p.point)}, {"normal", to_json(p.normal)}, {"color", to_json(p.color)}});
+  }
+  j["planes"] = planes;
+  json clips = json::array();
+  for (const vec4& c4 : scene.clip_planes()) clips.push_back({c4.x, c4.y, c4.z, c4.w});
+  j["clip_planes"] = clips;
+  j["background"] = to_json(scene.background());
+  return j.dump(2);
+}
+
+}  // namespace penumbra

@@ -1,0 +1,43 @@
+#pragma once
+// RenderView: everything a per-ray kernel reads, as one plain struct of views
+// and values (no ownership). Host code (SceneResources) builds it once per
+// frame; the CPU backend passes it by reference to every tile, a CUDA backend
+// would copy it to the device.
+#include "penumbra/base/math.h"
+#include "penumbra/base/ray.h"
+#include "penumbra/scene/camera.h"
+#include "penumbra/scene/light.h"
+#include "penumbra/scene/material.h"
+#include "penumbra/scene/plane.h"
+#include "penumbra/scene/transfer_function.h"
+#include "penumbra/volume/macrocell_grid.h"
+#include "penumbra/volume/volume_view.h"
+
+namespace penumbra {
+
+struct RenderView {
+  VolumeView volume;
+  MacrocellView macrocells;
+  const float* majorants = nullptr;  // per macrocell: the largest sigma_t any sample there can have (0 = empty)
+  TransferFunctionView tf;
+  Box3 box;  // the volume's world box
+
+  const vec4* clip_planes = nullptr;
+  int clip_plane_count = 0;
+  const Plane* planes = nullptr;
+  int plane_count = 0;
+  const Light* lights = nullptr;
+  int light_count = 0;
+
+  Material material;
+  vec3 background{0.0f};
+  float step = 1.0f;            // world units
+  float ert_threshold = 0.99f;  // stop when accumulated opacity reaches this
+  bool jitter = false;
+
+  CameraView camera;
+  int width = 0;
+  int height = 0;
+};
+
+}  // namespace penumbra

@@ -1,0 +1,42 @@
+#pragma once
+// SceneResources: the structures every technique shares, kept up to date with
+// the scene's version counters: the macrocell min/max grid (rebuilt when the
+// data changes), the baked transfer function table and the per-macrocell
+// majorant extinction (rebuilt when the data or the TF changes), plus copies
+// of lights, planes and clip planes for kernels.
+#include "penumbra/render/render_view.h"
+#include "penumbra/scene/scene.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace penumbra {
+
+class SceneResources {
+ public:
+  // Brings the shared structures up to date; returns true when the data or
+  // the TF changed since the last call (so techniques know to rebuild too).
+  bool update(const Scene& scene);
+
+  // A view for rendering the scene at its render size (update() first).
+  RenderView view(const Scene& scene) const;
+  // Same, with another transfer function table (e.g. a technique's own).
+  const TransferFunctionTable& tf_table() const { return tf_table_; }
+  const MacrocellGrid& macrocells() const { return macrocells_; }
+  const std::vector<float>& majorants() const { return majorants_; }
+
+  // Memory of the shared structures (not counted as a technique's aux_bytes).
+  std::uint64_t bytes() const;
+
+ private:
+  std::uint64_t data_version_ = 0;
+  std::uint64_t tf_version_ = 0;
+  MacrocellGrid macrocells_;
+  TransferFunctionTable tf_table_;
+  std::vector<float> majorants_;
+};
+
+// Per-macrocell maximum extinction of a TF table over a macrocell grid.
+std::vector<float> build_majorants(const MacrocellGrid& grid, const TransferFunctionTable& table);
+
+}  // namespace penumbra

@@ -1,0 +1,155 @@
+#include "penumbra/scene/scene.h"
+
+#include "penumbra/base/error.h"
+
+#include <fmt/format.h>
+
+#include <atomic>
+
+namespace penumbra {
+namespace {
+
+bool finite3(vec3 v) { return is_finite(v.x) && is_finite(v.y) && is_finite(v.z); }
+
+vec3 unit_vector(vec3 v, const std::string& key) {
+  if (!finite3(v)) throw InvalidScene(key, "must be finite");
+  const float len = glm::length(v);
+  if (!(len > 0.0f)) throw InvalidScene(key, "must not be the zero vector");
+  return v / len;
+}
+
+void check_colour(vec3 c, const std::string& key) {
+  if (!finite3(c) || c.r < 0.0f || c.g < 0.0f || c.b < 0.0f) {
+    throw InvalidScene(key, "colour components must be finite and >= 0");
+  }
+}
+
+}  // namespace
+
+void RenderSettings::validate() const {
+  if (width <= 0 || height <= 0) {
+    throw InvalidScene("render.width", fmt::format("image size must be positive, got {}x{}", width, height));
+  }
+  if (width > 16384 || height > 16384) {
+    throw InvalidScene("render.width", fmt::format("image size {}x{} exceeds 16384 per side", width, height));
+  }
+  if (!(step >= 0.01f && step <= 64.0f)) {
+    throw InvalidScene("render.step", fmt::format("must be in [0.01, 64] voxels, got {}", step));
+  }
+  if (!(ert_threshold > 0.0f && ert_threshold <= 1.0f)) {
+    throw InvalidScene("render.ert_threshold", fmt::format("must be in (0, 1], got {}", ert_threshold));
+  }
+  if (technique.empty()) throw InvalidScene("render.technique", "must name a technique");
+}
+
+std::uint64_t Scene::next_version() {
+  static std::atomic<std::uint64_t> counter{0};
+  return ++counter;
+}
+
+Scene::Scene() {
+  versions_ = SceneVersions{next_version(), next_version(), next_version(), next_version(),
+                            next_version(), next_version(), next_version()};
+}
+
+const Volume& Scene::volume() const {
+  if (!volume_) throw InvalidScene("volume", "the scene has no volume");
+  return *volume_;
+}
+
+void Scene::set_volume(std::shared_ptr<const Volume> volume, int time_step) {
+  if (!volume) throw InvalidScene("volume", "must not be null");
+  if (time_step < 0 || time_step >= volume->frame_count()) {
+    throw InvalidScene("volume.time_step", fmt::format("{} is out of range: the volume has {} time step(s)", time_step,
+                                                       volume->frame_count()));
+  }
+  volume_ = std::move(volume);
+  time_step_ = time_step;
+  versions_.data = next_version();
+}
+
+void Scene::set_time_step(int time_step) {
+  if (time_step == time_step_) return;
+  set_volume(volume_, time_step);
+}
+
+void Scene::set_transfer_function(TransferFunction tf) {
+  transfer_function_ = std::move(tf);
+  versions_.transfer_function = next_version();
+}
+
+void Scene::set_camera(Camera camera) {
+  camera.validate();
+  camera_ = camera;
+  versions_.camera = next_version();
+}
+
+void Scene::set_lights(std::vector<Light> lights) {
+  for (std::size_t i = 0; i < lights.size(); ++i) {
+    Light& l = lights[i];
+    const std::string key = fmt::format("lights[{}]", i);
+    if (l.type == LightType::Directional) l.direction = unit_vector(l.direction, key + ".direction");
+    if (!finite3(l.position)) throw InvalidScene(key + ".position", "must be finite");
+    check_colour(l.color, key + ".color");
+    if (!(l.intensity >= 0.0f && is_finite(l.intensity))) {
+      throw InvalidScene(key + ".intensity", fmt::format("must be finite and >= 0, got {}", l.intensity));
+    }
+  }
+  lights_ = std::move(lights);
+  versions_.lights = next_version();
+}
+
+void Scene::set_material(Material material) {
+  material.validate();
+  material_ = material;
+  versions_.material = next_version();
+}
+
+void Scene::set_background(vec3 background) {
+  check_colour(background, "background");
+  background_ = background;
+  versions_.material = next_version();
+}
+
+void Scene::set_planes(std::vector<Plane> planes) {
+  for (std::size_t i = 0; i < planes.size(); ++i) {
+    const std::string key = fmt::format("planes[{}]", i);
+    planes[i].normal = unit_vector(planes[i].normal, key + ".normal");
+    if (!finite3(planes[i].point)) throw InvalidScene(key + ".point", "must be finite");
+    check_colour(planes[i].color, key + ".color");
+  }
+  planes_ = std::move(planes);
+  versions_.geometry = next_version();
+}
+
+void Scene::set_clip_planes(std::vector<vec4> clip_planes) {
+  for (std::size_t i = 0; i < clip_planes.size(); ++i) {
+    vec4& c = clip_planes[i];
+    const std::string key = fmt::format("clip_planes[{}]", i);
+    if (!finite3(vec3(c)) || !is_finite(c.w)) throw InvalidScene(key, "must be finite");
+    const float len = glm::length(vec3(c));
+    if (!(len > 0.0f)) throw InvalidScene(key, "the normal (a, b, c) must not be zero");
+    c /= len;  // so plane distances are in world units
+  }
+  clip_planes_ = std::move(clip_planes);
+  versions_.geometry = next_version();
+}
+
+void Scene::set_render(RenderSettings render) {
+  render.validate();
+  render_ = std::move(render);
+  versions_.render = next_version();
+}
+
+vec2 Scene::tf_value_range() const {
+  const ValueRange r = volume().value_range();
+  return transfer_function_.resolve_range(vec2(r.min, r.max));
+}
+
+float Scene::unit_length() const {
+  return transfer_function_.unit_length().value_or(min_component(volume().spacing()));
+}
+
+float Scene::step_world() const { return render_.step * min_component(volume().spacing()); }
+
+}  // namespace penumbra

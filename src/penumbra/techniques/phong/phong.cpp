@@ -1,0 +1,31 @@
+#include "penumbra/techniques/phong/phong.h"
+
+#include "penumbra/render/lighting.h"
+#include "penumbra/render/scene_resources.h"
+
+namespace penumbra {
+namespace {
+
+class Phong final : public Technique {
+ public:
+  void prepare(const Scene& scene, const ParameterValues&) override { resources_.update(scene); }
+
+  void render(const Scene& scene, Image& image, RenderStats* stats) override {
+    const RenderView view = resources_.view(scene);
+    render_image(view, ScatteringLighting<NoShadows>{&view, {}, Shading::Phong}, image, stats);
+  }
+
+  std::uint64_t aux_bytes() const override { return 0; }
+
+ private:
+  SceneResources resources_;
+};
+
+}  // namespace
+
+TechniqueInfo phong_info() {
+  return TechniqueInfo{"phong", "gradient Blinn-Phong shading, any number of lights, no shadows", ParameterTable{},
+                       [] { return std::make_unique<Phong>(); }};
+}
+
+}  // namespace penumbra

@@ -1,0 +1,26 @@
+#pragma once
+// Small scenes for tests: a procedural volume, an explicit TF range and a
+// camera framing the box, rendered at a small size.
+#include "penumbra/render/image.h"
+#include "penumbra/scene/scene.h"
+#include "penumbra/volume/procedural.h"
+
+#include <string>
+
+namespace penumbra::testing {
+
+// A scene over a procedural volume with a TF over [0, 1], a camera framing the
+// box from -y, no lights and the given image size.
+Scene procedural_scene(const std::string& builtin, ivec3 size, int image_size = 48);
+
+// A TF with constant colour and the given alpha for every value in [lo, 1]
+// and alpha 0 below lo.
+TransferFunction step_tf(float lo, vec3 color, float alpha);
+
+// Renders with a registered technique and parameters (name=value pairs).
+Image render_with(const Scene& scene, const std::string& technique, const ParameterSettings& params = {});
+
+// Mean of an image's rgb over a pixel rectangle [x0, x1) x [y0, y1).
+vec3 mean_rgb(const Image& image, int x0, int y0, int x1, int y1);
+
+}  // namespace penumbra::testing
