@@ -9,6 +9,7 @@
 #include "cli_common.h"
 #include "commands.h"
 
+#include "penumbra/base/error.h"
 #include "penumbra/base/parallel.h"
 #include "penumbra/techniques/registry.h"
 
@@ -65,7 +66,7 @@ TransferFunction nudged_tf(const TransferFunction& tf, int round) {
 }
 
 void bench_technique(Scene scene, const TechniqueInfo& info, const BenchOptions& options) {
-  const ParameterValues params = resolve_parameters(scene, info, options.scene.params);
+  const ParameterValues params = resolve_parameters(scene, info, options.scene.params, options.techniques.size() < 2);
   auto technique = info.create();
   Image image;
   technique->prepare(scene, params);
@@ -118,6 +119,14 @@ void run_bench(const BenchOptions& options) {
   if (names.empty()) names.push_back(scene.render().technique);
   std::vector<const TechniqueInfo*> infos;
   for (const std::string& n : names) infos.push_back(&find_technique(n));  // all names checked before any run
+  // Every --param must be declared by at least one of the techniques.
+  for (const std::string& p : options.scene.params) {
+    std::string name = p.substr(0, p.find('='));
+    if (const auto dot = name.find('.'); dot != std::string::npos) name = name.substr(dot + 1);
+    bool known = false;
+    for (const TechniqueInfo* info : infos) known = known || info->parameters.find(name);
+    if (!known) throw InvalidArgument(name, "no technique being timed has this parameter (see penumbra techniques)");
+  }
   for (const TechniqueInfo* info : infos) bench_technique(scene, *info, options);
 }
 

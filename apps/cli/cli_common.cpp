@@ -40,7 +40,7 @@ Scene load_scene_for(const SceneOptions& options) {
 }
 
 ParameterValues resolve_parameters(const Scene& scene, const TechniqueInfo& info,
-                                   const std::vector<std::string>& cli_params) {
+                                   const std::vector<std::string>& cli_params, bool strict_cli) {
   ParameterValues values(info.parameters);
   try {
     values.apply(scene.render().params, scene.render().technique == info.name);
@@ -58,6 +58,7 @@ ParameterValues resolve_parameters(const Scene& scene, const TechniqueInfo& info
       if (name.substr(0, dot) != info.name) continue;
       name = name.substr(dot + 1);
     }
+    if (!strict_cli && !info.parameters.find(name)) continue;
     values.set(name, info.parameters.at(name).parse(text.substr(eq + 1)));
   }
   return values;

@@ -23,10 +23,12 @@ struct SceneOptions {
 Scene load_scene_for(const SceneOptions& options);
 
 // Parameters for `info` from the scene's render.params (strictly when the
-// technique is the scene's own, else only those it declares) and then the
-// command line's name=value pairs (strictly).
+// technique is the scene's own, else only those it declares), then the
+// command line's name=value pairs: strictly, or with `strict_cli` false only
+// those the technique declares (bench runs several techniques with one list).
+// "technique.name=value" applies to that technique only.
 ParameterValues resolve_parameters(const Scene& scene, const TechniqueInfo& info,
-                                   const std::vector<std::string>& cli_params);
+                                   const std::vector<std::string>& cli_params, bool strict_cli = true);
 
 // The folder of real volumes (../shared/data) if it can be found:
 // $PENUMBRA_DATA_DIR, ./../shared/data, or beside the source tree.

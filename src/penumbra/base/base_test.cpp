@@ -50,6 +50,19 @@ TEST(Ray, ClipIntervalKeepsThePositiveHalfSpace) {
   EXPECT_TRUE(clip_interval(Ray{vec3(0.0f), vec3(1.0f, 0.0f, 0.0f)}, &plane, 1, Interval{0.0f, 1.0f}).empty());
 }
 
+TEST(Math, ExpNonpositiveMatchesStdExp) {
+  float worst = 0.0f;
+  for (float x = 0.0f; x > -86.0f; x -= 0.0137f) {
+    const float expected = std::exp(x);
+    worst = std::max(worst, std::abs(exp_nonpositive(x) - expected) / expected);
+  }
+  EXPECT_LT(worst, 3e-7f);
+  EXPECT_EQ(exp_nonpositive(0.0f), 1.0f);
+  EXPECT_EQ(exp_nonpositive(-100.0f), 0.0f);
+  EXPECT_EQ(exp_nonpositive(-std::numeric_limits<float>::infinity()), 0.0f);
+  EXPECT_EQ(exp_nonpositive(std::numeric_limits<float>::quiet_NaN()), 0.0f);
+}
+
 TEST(Pcg32, IsDeterministicAndUniform) {
   Pcg32 a(42), b(42), c(43);
   EXPECT_EQ(a.next_uint(), b.next_uint());

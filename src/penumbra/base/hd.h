@@ -8,3 +8,13 @@
 #else
 #define PENUMBRA_HD
 #endif
+
+// Forces inlining of small per-sample helpers whose call overhead would
+// dominate (the sample cursor of the marching loop).
+#if defined(__CUDACC__)
+#define PENUMBRA_FORCE_INLINE __forceinline__
+#elif defined(__GNUC__) || defined(__clang__)
+#define PENUMBRA_FORCE_INLINE __attribute__((always_inline)) inline
+#else
+#define PENUMBRA_FORCE_INLINE inline
+#endif

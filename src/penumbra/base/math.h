@@ -30,6 +30,25 @@ PENUMBRA_HD inline bool is_finite(float x) { return x - x == 0.0f; }
 PENUMBRA_HD inline float max_component(vec3 v) { return glm::max(v.x, glm::max(v.y, v.z)); }
 PENUMBRA_HD inline float min_component(vec3 v) { return glm::min(v.x, glm::min(v.y, v.z)); }
 
+// exp(x) for x <= 0, inlined and branch-light for per-sample opacity and
+// transmittance: x = n ln2 + f with n an integer (built into the exponent
+// bits) and |f| <= ln2 / 2, f computed with a two-part ln2 (Cody & Waite) and
+// e^f by its Taylor series to degree 6 (relative error < 3e-7). Returns 0
+// below the float range. Rounding to the nearest integer adds and subtracts
+// 1.5 * 2^23 (penumbra never builds with -ffast-math, which would fold it).
+PENUMBRA_HD inline float exp_nonpositive(float x) {
+  if (!(x > -87.0f)) return 0.0f;
+  constexpr float round_bias = 12582912.0f;
+  const float n = (x * 1.44269504088896341f + round_bias) - round_bias;
+  const float f = (x - n * 0.693145751953125f) - n * 1.428606765330187045e-06f;
+  const float p =
+      1.0f + f * (1.0f + f * (0.5f + f * (1.0f / 6.0f + f * (1.0f / 24.0f + f * (1.0f / 120.0f + f * (1.0f / 720.0f))))));
+  const std::int32_t bits = (std::int32_t(n) + 127) << 23;
+  float scale;
+  __builtin_memcpy(&scale, &bits, sizeof(scale));
+  return p * scale;
+}
+
 // Rec. 709 / sRGB luminance of a linear colour.
 PENUMBRA_HD inline float luminance(vec3 c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
 

@@ -5,9 +5,11 @@
 //   plane:  colour * (ambient + sum_l max(0, n.l) L_l V_l)
 // Every technique shares this code; each supplies only the light visibility
 // V_l(x) through a Visibility functor:
-//   float operator()(int light, vec3 position, const LightSample&) const
-// returning the volume's transmittance toward that light in [0, 1]. Opaque
-// planes between a point and a light block it for every technique.
+//   vec3 operator()(int light, vec3 position, const LightSample&) const
+// returning the volume's transmittance toward that light per colour channel,
+// in [0, 1] (grey for the physical model; techniques with coloured shadows
+// such as CSSM return colours). Opaque planes between a point and a light
+// block it for every technique.
 #include "penumbra/render/march.h"
 #include "penumbra/scene/light.h"
 #include "penumbra/scene/material.h"
@@ -36,7 +38,7 @@ PENUMBRA_HD inline bool shading_normal(const RenderView& v, const SamplePoint& s
 }
 
 struct NoShadows {
-  PENUMBRA_HD float operator()(int, vec3, const LightSample&) const { return 1.0f; }
+  PENUMBRA_HD vec3 operator()(int, vec3, const LightSample&) const { return vec3(1.0f); }
 };
 
 template <class Visibility>
@@ -70,10 +72,9 @@ struct ScatteringLighting {
                      : 0.0f;
       if (factor <= 0.0f && highlight <= 0.0f) continue;
       if (blocked_by_planes(v, s.world, ls)) continue;
-      const float visible = visibility(i, s.world, ls);
-      if (visible <= 0.0f) continue;
-      diffuse += (factor * visible) * ls.radiance;
-      specular += (highlight * visible) * ls.radiance;
+      const vec3 visible = visibility(i, s.world, ls) * ls.radiance;
+      diffuse += factor * visible;
+      specular += highlight * visible;
     }
     return albedo * diffuse + specular;
   }
@@ -89,7 +90,7 @@ struct ScatteringLighting {
       const float cosine = glm::dot(normal, ls.to_light);
       if (cosine <= 0.0f) continue;
       if (blocked_by_planes(v, h.position, ls, h.plane)) continue;
-      sum += (cosine * visibility(i, h.position, ls)) * ls.radiance;
+      sum += cosine * visibility(i, h.position, ls) * ls.radiance;
     }
     return p.color * sum;
   }

@@ -11,6 +11,9 @@
 // offset * length inside it (offset 0.5 = midpoint, or a per-pixel random
 // value with jitter). Segment lengths add up to t1 - t0 exactly, so a
 // homogeneous medium integrates to exp(-sigma_t (t1 - t0)) at any step.
+//
+// Kernels take a Sampler (VolumeSampler<T>, see volume_sampler.h) so the
+// per-sample code is specialised for the voxel type.
 #include "penumbra/base/ray.h"
 #include "penumbra/render/render_view.h"
 
@@ -62,59 +65,189 @@ struct SampleGrid {
   }
 };
 
-// Calls visit(t_begin, t_end, majorant) for every macrocell that the ray
-// crosses within [t0, t1] and whose majorant is positive, front to back (3D
-// DDA, Amanatides & Woo 1987). Stops early when visit returns false.
-template <class Visit>
-PENUMBRA_HD void traverse_macrocells(const RenderView& v, const Ray& ray, float t0, float t1, Visit&& visit) {
-  const float size = float(v.macrocells.cell_size);
-  const ivec3 dims = v.macrocells.dims;
-  const vec3 o = v.volume.index_from_world(ray.origin);
-  const vec3 d = ray.direction / v.volume.spacing;
-  ivec3 cell = glm::clamp(ivec3(glm::floor((o + t0 * d) / size)), ivec3(0), dims - 1);
-  ivec3 step(0);
-  vec3 t_next(kInfinity);
-  vec3 t_delta(kInfinity);
-  for (int a = 0; a < 3; ++a) {
-    if (d[a] > 0.0f) {
-      step[a] = 1;
-      t_next[a] = (float(cell[a] + 1) * size - o[a]) / d[a];
-      t_delta[a] = size / d[a];
-    } else if (d[a] < 0.0f) {
-      step[a] = -1;
-      t_next[a] = (float(cell[a]) * size - o[a]) / d[a];
-      t_delta[a] = -size / d[a];
+// The macrocell walk of one ray: a 3D DDA (Amanatides & Woo 1987) that also
+// jumps over cubes of empty macrocells using the empty-space distance.
+class MacrocellWalk {
+ public:
+  PENUMBRA_HD MacrocellWalk(const RenderView& v, const Ray& ray, float t)
+      : v_(v), size_(float(v.macrocells.cell_size)), origin_(v.volume.index_from_world(ray.origin)),
+        dir_(ray.direction / v.volume.spacing) {
+    restart(t);
+  }
+
+  PENUMBRA_HD float t() const { return t_; }
+  PENUMBRA_HD float majorant() const { return v_.majorants[v_.macrocells.index(cell_)]; }
+  PENUMBRA_HD float cell_exit() const { return glm::min(t_next_.x, glm::min(t_next_.y, t_next_.z)); }
+
+  // Moves to the next macrocell along the ray; false when the ray leaves the grid.
+  PENUMBRA_HD bool step() {
+    const int axis = t_next_.x < t_next_.y ? (t_next_.x < t_next_.z ? 0 : 2) : (t_next_.y < t_next_.z ? 1 : 2);
+    t_ = glm::max(t_, t_next_[axis]);
+    cell_[axis] += step_[axis];
+    if (cell_[axis] < 0 || cell_[axis] >= v_.macrocells.dims[axis]) return false;
+    t_next_[axis] += t_delta_[axis];
+    return true;
+  }
+
+  // In an empty cell: moves past the cube of cells that are all empty around
+  // it (or one cell when that cube is the cell itself). False when the ray
+  // leaves the grid.
+  PENUMBRA_HD bool skip_empty() {
+    const int radius = int(v_.empty_distance[v_.macrocells.index(cell_)]) - 1;
+    if (radius < 1) return step();
+    float t_exit = kInfinity;
+    for (int a = 0; a < 3; ++a) {
+      if (dir_[a] == 0.0f) continue;
+      const float bound = dir_[a] > 0.0f ? float(cell_[a] + radius + 1) * size_ : float(cell_[a] - radius) * size_;
+      t_exit = glm::min(t_exit, (bound - origin_[a]) / dir_[a]);
+    }
+    if (!(t_exit > cell_exit())) return step();
+    restart(t_exit);
+    return inside_;
+  }
+
+ private:
+  PENUMBRA_HD void restart(float t) {
+    t_ = t;
+    const vec3 p = (origin_ + t * dir_) / size_;
+    const ivec3 dims = v_.macrocells.dims;
+    inside_ = true;
+    for (int a = 0; a < 3; ++a) {
+      float c = glm::floor(p[a]);
+      // On a cell boundary, belong to the cell the ray moves into.
+      if (dir_[a] < 0.0f && c == p[a]) c -= 1.0f;
+      cell_[a] = int(c);
+      if (cell_[a] < 0 || cell_[a] >= dims[a]) {
+        // Rounding at the grid border when entering: clamp; leaving: stop.
+        const bool entering = (cell_[a] < 0) == (dir_[a] > 0.0f);
+        if (!entering && dir_[a] != 0.0f) inside_ = false;
+        cell_[a] = glm::clamp(cell_[a], 0, dims[a] - 1);
+      }
+      if (dir_[a] > 0.0f) {
+        step_[a] = 1;
+        t_next_[a] = (float(cell_[a] + 1) * size_ - origin_[a]) / dir_[a];
+        t_delta_[a] = size_ / dir_[a];
+      } else if (dir_[a] < 0.0f) {
+        step_[a] = -1;
+        t_next_[a] = (float(cell_[a]) * size_ - origin_[a]) / dir_[a];
+        t_delta_[a] = -size_ / dir_[a];
+      } else {
+        step_[a] = 0;
+        t_next_[a] = kInfinity;
+        t_delta_[a] = kInfinity;
+      }
     }
   }
-  float t = t0;
-  while (t < t1) {
-    const int axis = t_next.x < t_next.y ? (t_next.x < t_next.z ? 0 : 2) : (t_next.y < t_next.z ? 1 : 2);
-    const float t_exit = glm::min(t_next[axis], t1);
-    const float majorant = v.majorants[v.macrocells.index(cell)];
-    if (majorant > 0.0f && t_exit > t) {
-      if (!visit(t, t_exit, majorant)) return;
+
+  const RenderView& v_;
+  float size_;
+  vec3 origin_;
+  vec3 dir_;
+  float t_ = 0.0f;
+  bool inside_ = true;
+  ivec3 cell_{0};
+  ivec3 step_{0};
+  vec3 t_next_{kInfinity};
+  vec3 t_delta_{kInfinity};
+};
+
+// The runs of consecutive non-empty macrocells that a ray crosses within
+// [t0, t1], front to back, with empty space skipped:
+//   OccupiedRuns runs(view, ray, t0, t1);
+//   for (float a, b; runs.next(a, b);) { ... }
+class OccupiedRuns {
+ public:
+  PENUMBRA_HD OccupiedRuns(const RenderView& v, const Ray& ray, float t0, float t1) : walk_(v, ray, t0), t1_(t1) {}
+
+  PENUMBRA_HD PENUMBRA_FORCE_INLINE bool next(float& a, float& b) {
+    while (alive_ && walk_.t() < t1_) {
+      if (walk_.majorant() > 0.0f) {
+        if (run_start_ < 0.0f) run_start_ = walk_.t();
+        alive_ = walk_.step();
+      } else {
+        const bool ends_run = run_start_ >= 0.0f;
+        if (ends_run) {
+          a = run_start_;
+          b = glm::min(walk_.t(), t1_);
+          run_start_ = -1.0f;
+        }
+        alive_ = walk_.skip_empty();
+        if (ends_run) return true;
+      }
     }
-    t = glm::max(t, t_exit);
-    cell[axis] += step[axis];
-    if (cell[axis] < 0 || cell[axis] >= dims[axis]) return;
-    t_next[axis] += t_delta[axis];
+    if (run_start_ >= 0.0f && run_start_ < t1_) {
+      a = run_start_;
+      b = glm::min(walk_.t(), t1_);
+      run_start_ = -1.0f;
+      return true;
+    }
+    return false;
+  }
+
+ private:
+  MacrocellWalk walk_;
+  float t1_;
+  float run_start_ = -1.0f;  // < 0: not inside a run
+  bool alive_ = true;
+};
+
+// Calls visit(t_begin, t_end, majorant) for every macrocell with a positive
+// majorant that the ray crosses within [t0, t1], front to back (the path
+// tracer's piecewise-constant majorant). Stops when visit returns false.
+template <class Visit>
+PENUMBRA_HD void for_each_occupied_cell(const RenderView& v, const Ray& ray, float t0, float t1, Visit&& visit) {
+  MacrocellWalk walk(v, ray, t0);
+  while (walk.t() < t1) {
+    const float m = walk.majorant();
+    if (m > 0.0f) {
+      const float end = glm::min(walk.cell_exit(), t1);
+      if (end > walk.t() && !visit(walk.t(), end, m)) return;
+      if (!walk.step()) return;
+    } else if (!walk.skip_empty()) {
+      return;
+    }
   }
 }
 
-// Calls sample(k, t) for every segment of `grid` whose sample lies in a
-// non-empty macrocell, front to back; stops when sample returns false.
-template <class Sample>
-PENUMBRA_HD void for_each_sample(const RenderView& v, const Ray& ray, const SampleGrid& grid, Sample&& sample) {
-  traverse_macrocells(v, ray, grid.t0, grid.t1, [&](float a, float b, float) {
-    const bool last_cell = b >= grid.t1;
-    for (int k = grid.first_at_or_after(a); k < grid.count; ++k) {
-      const float t = grid.position(k);
-      if (!last_cell && t >= b) break;
-      if (!sample(k, t)) return false;
+// The samples of `grid` that lie in non-empty macrocells, front to back:
+//   SampleCursor cursor(view, ray, grid);
+//   for (int k; float t; cursor.next(k, t)) { ... segment k, at ray parameter t ... }
+// A plain loop rather than a callback, so the caller's accumulators stay in
+// registers.
+class SampleCursor {
+ public:
+  PENUMBRA_HD SampleCursor(const RenderView& v, const Ray& ray, const SampleGrid& grid)
+      : runs_(v, ray, grid.t0, grid.t1), grid_(grid), k_(grid.count) {}
+
+  PENUMBRA_HD PENUMBRA_FORCE_INLINE bool next(int& k, float& t) {
+    for (;;) {
+      if (k_ < grid_.count) {
+        const float tk = grid_.position(k_);
+        if (last_run_ || tk < run_end_) {
+          k = k_++;
+          t = tk;
+          return true;
+        }
+      } else if (started_) {
+        return false;  // every segment has been visited
+      }
+      float a = 0.0f, b = 0.0f;
+      if (!runs_.next(a, b)) return false;
+      started_ = true;
+      run_end_ = b;
+      last_run_ = b >= grid_.t1;
+      k_ = grid_.first_at_or_after(a);
     }
-    return true;
-  });
-}
+  }
+
+ private:
+  OccupiedRuns runs_;
+  const SampleGrid& grid_;
+  int k_;
+  float run_end_ = 0.0f;
+  bool last_run_ = false;
+  bool started_ = false;
+};
 
 // The part of a ray inside the volume box and the clip planes, within [t_min, t_max].
 PENUMBRA_HD inline Interval volume_interval(const RenderView& v, const Ray& ray, float t_min, float t_max) {
@@ -127,19 +260,35 @@ inline constexpr float kMaxOpticalDepth = 11.5f;
 // Transmittance exp(-integral sigma_t) from ray.origin along ray.direction up
 // to t_max (the volume boundary or a point light), with sigma_t scaled by
 // density_scale. Respects clip planes; skips empty macrocells.
-PENUMBRA_HD inline float march_transmittance(const RenderView& v, const Ray& ray, float t_max, float density_scale,
-                                             RayStats& stats) {
+template <class Sampler>
+PENUMBRA_HD float march_transmittance(const RenderView& v, const Sampler& sampler, const Ray& ray, float t_max,
+                                      float density_scale, RayStats& stats) {
   const SampleGrid grid(volume_interval(v, ray, 0.0f, t_max), v.step, 0.5f);
   if (grid.count == 0 || density_scale <= 0.0f) return 1.0f;
   const vec3 o = v.volume.index_from_world(ray.origin);
   const vec3 d = ray.direction / v.volume.spacing;
+  const TransferFunctionView tf = v.tf;
   float depth = 0.0f;
-  for_each_sample(v, ray, grid, [&](int k, float t) {
-    ++stats.samples;
-    depth += v.tf.lookup(v.volume.sample_index(o + t * d)).a * grid.length(k) * density_scale;
-    return depth < kMaxOpticalDepth;
+  std::uint64_t samples = 0;
+  SampleCursor cursor(v, ray, grid);
+  int k;
+  float t;
+  while (cursor.next(k, t)) {
+    ++samples;
+    depth += tf.lookup(sampler(o + t * d)).a * grid.length(k);
+    if (depth * density_scale >= kMaxOpticalDepth) break;
+  }
+  stats.samples += samples;
+  depth *= density_scale;
+  return depth < kMaxOpticalDepth ? exp_nonpositive(-depth) : 0.0f;
+}
+
+// The same, dispatching on the voxel type (one switch per ray).
+PENUMBRA_HD inline float march_transmittance(const RenderView& v, const Ray& ray, float t_max, float density_scale,
+                                             RayStats& stats) {
+  return with_sampler(v.volume, [&](const auto& sampler) {
+    return march_transmittance(v, sampler, ray, t_max, density_scale, stats);
   });
-  return depth < kMaxOpticalDepth ? glm::exp(-depth) : 0.0f;
 }
 
 // Nearest opaque plane along the ray in (0, t_max); returns its index or -1.
@@ -158,34 +307,38 @@ PENUMBRA_HD inline int nearest_plane(const RenderView& v, const Ray& ray, float 
 
 // Front-to-back compositing of one viewing ray. Returns linear rgb and the
 // accumulated opacity (1 where an opaque plane was reached).
-template <class Lighting>
-PENUMBRA_HD vec4 march_ray(const RenderView& v, const Ray& ray, float offset, const Lighting& lighting,
-                           RayStats& stats) {
+template <class Sampler, class Lighting>
+PENUMBRA_HD vec4 march_ray(const RenderView& v, const Sampler& sampler, const Ray& ray, float offset,
+                           const Lighting& lighting, RayStats& stats) {
   float t_plane = kInfinity;
   const int plane = nearest_plane(v, ray, kInfinity, t_plane);
   const SampleGrid grid(volume_interval(v, ray, 0.0f, t_plane), v.step, offset);
   const vec3 o = v.volume.index_from_world(ray.origin);
   const vec3 d = ray.direction / v.volume.spacing;
+  const TransferFunctionView tf = v.tf;
+  const float min_transmittance = 1.0f - v.ert_threshold;
   vec3 color(0.0f);
   float transmittance = 1.0f;
-  const float min_transmittance = 1.0f - v.ert_threshold;
-  bool terminated = false;
-  if (grid.count > 0) {
-    for_each_sample(v, ray, grid, [&](int k, float t) {
-      ++stats.samples;
-      const vec3 p = o + t * d;
-      const float value = v.volume.sample_index(p);
-      const vec4 c = v.tf.lookup(value);
-      if (c.a <= 0.0f) return true;
-      const float alpha = 1.0f - glm::exp(-c.a * grid.length(k));
-      const SamplePoint s{ray.at(t), p, value, vec3(c), c.a, ray.direction};
-      color += (transmittance * alpha) * lighting.sample(s);
-      transmittance *= 1.0f - alpha;
-      terminated = transmittance <= min_transmittance;
-      return !terminated;
-    });
+  std::uint64_t samples = 0;
+  SampleCursor cursor(v, ray, grid);
+  int k;
+  float t;
+  while (cursor.next(k, t)) {
+    ++samples;
+    const vec3 p = o + t * d;
+    const float value = sampler(p);
+    const vec4 c = tf.lookup(value);
+    if (c.a <= 0.0f) continue;
+    const float alpha = 1.0f - exp_nonpositive(-c.a * grid.length(k));
+    const SamplePoint s{ray.at(t), p, value, vec3(c), c.a, ray.direction};
+    color += (transmittance * alpha) * lighting.sample(s);
+    transmittance *= 1.0f - alpha;
+    if (transmittance <= min_transmittance) {
+      stats.samples += samples;
+      return vec4(color, 1.0f - transmittance);  // early ray termination
+    }
   }
-  if (terminated) return vec4(color, 1.0f - transmittance);
+  stats.samples += samples;
   if (plane >= 0) {
     color += transmittance * lighting.plane(PlaneHit{ray.at(t_plane), plane, ray.direction});
     return vec4(color, 1.0f);

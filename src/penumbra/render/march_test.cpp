@@ -84,7 +84,7 @@ TEST(March, RaysThroughEmptySpaceTakeNoSamples) {
   RayStats stats;
   EXPECT_FLOAT_EQ(march_transmittance(v, empty, kInfinity, 1.0f, stats), 1.0f);
   EXPECT_EQ(stats.samples, 0u);
-  const vec4 c = march_ray(v, empty, 0.5f, EmissionLighting{&v}, stats);
+  const vec4 c = march_ray(v, VolumeSampler<float>(v.volume.data, v.volume.dims), empty, 0.5f, EmissionLighting{&v}, stats);
   EXPECT_EQ(stats.samples, 0u);
   EXPECT_FLOAT_EQ(c.a, 0.0f);
   // Through a sphere centre: samples are taken, but fewer than without skipping.
@@ -102,13 +102,15 @@ TEST(March, SkippingChangesNoPixel) {
   SceneResources resources;
   resources.update(scene);
   const RenderView v = resources.view(scene);
-  std::vector<float> all_occupied(resources.majorants().size(), 1.0f);
+  std::vector<float> all_occupied(resources.majorants().majorant.size(), 1.0f);
+  std::vector<std::uint8_t> no_empty(all_occupied.size(), 0);
   RenderView no_skip = v;
   no_skip.majorants = all_occupied.data();
+  no_skip.empty_distance = no_empty.data();
   Image skipped, full;
   RenderStats s1, s2;
-  render_image(v, EmissionLighting{&v}, skipped, &s1);
-  render_image(no_skip, EmissionLighting{&no_skip}, full, &s2);
+  render_image(v, [&](const auto&) { return EmissionLighting{&v}; }, skipped, &s1);
+  render_image(no_skip, [&](const auto&) { return EmissionLighting{&no_skip}; }, full, &s2);
   for (std::size_t i = 0; i < skipped.pixel_count(); ++i) {
     ASSERT_NEAR(skipped.data()[i].r, full.data()[i].r, 1e-6f);
     ASSERT_NEAR(skipped.data()[i].a, full.data()[i].a, 1e-6f);
@@ -159,9 +161,10 @@ TEST(March, EarlyRayTerminationStopsAtTheThreshold) {
   const Ray ray{vec3(-100.0f, 0.0f, 0.0f), vec3(1.0f, 0.0f, 0.0f)};
   RayStats with_ert, without;
   v.ert_threshold = 0.99f;
-  const vec4 a = march_ray(v, ray, 0.5f, EmissionLighting{&v}, with_ert);
+  const VolumeSampler<float> sampler(v.volume.data, v.volume.dims);
+  const vec4 a = march_ray(v, sampler, ray, 0.5f, EmissionLighting{&v}, with_ert);
   v.ert_threshold = 1.0f;
-  const vec4 b = march_ray(v, ray, 0.5f, EmissionLighting{&v}, without);
+  const vec4 b = march_ray(v, sampler, ray, 0.5f, EmissionLighting{&v}, without);
   EXPECT_GE(a.a, 0.99f);
   EXPECT_LT(with_ert.samples, without.samples);
   // sigma = -ln(0.7) per voxel, step 0.5: opacity 0.99 after ln(100)/sigma voxels.

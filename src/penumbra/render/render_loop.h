@@ -23,19 +23,26 @@ struct RenderStats {
   std::uint64_t rays = 0;
 };
 
-template <class Lighting>
-void render_image(const RenderView& v, const Lighting& lighting, Image& image, RenderStats* stats = nullptr) {
+// Renders every pixel with march_ray. make_lighting(sampler) returns the
+// technique's Lighting for the volume's typed sampler (called once; the voxel
+// type is dispatched once per image, not per sample).
+template <class MakeLighting>
+void render_image(const RenderView& v, const MakeLighting& make_lighting, Image& image, RenderStats* stats = nullptr) {
   if (image.width() != v.width || image.height() != v.height) image = Image(v.width, v.height);
   std::atomic<std::uint64_t> total_samples{0};
-  parallel_for_tiles(v.width, v.height, 16, [&](int x0, int y0, int x1, int y1) {
-    RayStats tile_stats;
-    for (int y = y0; y < y1; ++y) {
-      for (int x = x0; x < x1; ++x) {
-        const Ray ray = v.camera.pixel_ray(float(x) + 0.5f, float(y) + 0.5f, v.width, v.height);
-        image.at(x, y) = march_ray(v, ray, pixel_sample_offset(v, x, y), lighting, tile_stats);
+  with_sampler(v.volume, [&](const auto& sampler) {
+    const auto lighting = make_lighting(sampler);
+    parallel_for_tiles(v.width, v.height, 16, [&](int x0, int y0, int x1, int y1) {
+      RayStats tile_stats;
+      for (int y = y0; y < y1; ++y) {
+        for (int x = x0; x < x1; ++x) {
+          const Ray ray = v.camera.pixel_ray(float(x) + 0.5f, float(y) + 0.5f, v.width, v.height);
+          image.at(x, y) = march_ray(v, sampler, ray, pixel_sample_offset(v, x, y), lighting, tile_stats);
+        }
       }
-    }
-    total_samples.fetch_add(tile_stats.samples, std::memory_order_relaxed);
+      total_samples.fetch_add(tile_stats.samples, std::memory_order_relaxed);
+    });
+    return 0;
   });
   if (stats) {
     stats->samples += total_samples.load();

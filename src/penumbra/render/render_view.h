@@ -13,12 +13,15 @@
 #include "penumbra/volume/macrocell_grid.h"
 #include "penumbra/volume/volume_view.h"
 
+#include <cstdint>
+
 namespace penumbra {
 
 struct RenderView {
   VolumeView volume;
   MacrocellView macrocells;
   const float* majorants = nullptr;  // per macrocell: the largest sigma_t any sample there can have (0 = empty)
+  const std::uint8_t* empty_distance = nullptr;  // per macrocell: chessboard distance to a non-empty one
   TransferFunctionView tf;
   Box3 box;  // the volume's world box
 

@@ -1,21 +1,6 @@
 #include "penumbra/render/scene_resources.h"
 
-#include "penumbra/base/parallel.h"
-
 namespace penumbra {
-
-std::vector<float> build_majorants(const MacrocellGrid& grid, const TransferFunctionTable& table) {
-  const ivec3 d = grid.dims();
-  std::vector<float> majorants(static_cast<std::size_t>(d.x) * d.y * d.z);
-  const MacrocellView cells = grid.view();
-  parallel_for(0, std::int64_t(majorants.size()), [&](std::int64_t first, std::int64_t last) {
-    for (std::int64_t i = first; i < last; ++i) {
-      const vec2 range = cells.min_max[i];
-      majorants[static_cast<std::size_t>(i)] = table.max_extinction(range.x, range.y);
-    }
-  }, 256);
-  return majorants;
-}
 
 bool SceneResources::update(const Scene& scene) {
   const SceneVersions& v = scene.versions();
@@ -28,7 +13,7 @@ bool SceneResources::update(const Scene& scene) {
   }
   if (v.transfer_function != tf_version_) {
     tf_table_ = TransferFunctionTable(scene.transfer_function(), scene.tf_value_range(), scene.unit_length());
-    majorants_ = build_majorants(macrocells_, tf_table_);
+    majorants_ = build_majorant_grid(macrocells_, tf_table_);
     tf_version_ = v.transfer_function;
     changed = true;
   }
@@ -39,7 +24,8 @@ RenderView SceneResources::view(const Scene& scene) const {
   RenderView r;
   r.volume = scene.volume_view();
   r.macrocells = macrocells_.view();
-  r.majorants = majorants_.data();
+  r.majorants = majorants_.majorant.data();
+  r.empty_distance = majorants_.empty_distance.data();
   r.tf = tf_table_.view();
   r.box = scene.volume().world_box();
   r.clip_planes = scene.clip_planes().data();
@@ -60,7 +46,7 @@ RenderView SceneResources::view(const Scene& scene) const {
 }
 
 std::uint64_t SceneResources::bytes() const {
-  return macrocells_.bytes() + majorants_.size() * sizeof(float) +
+  return macrocells_.bytes() + majorants_.bytes() +
          std::uint64_t(tf_table_.view().size) * sizeof(vec4);
 }
 

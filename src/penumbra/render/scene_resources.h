@@ -4,6 +4,7 @@
 // data changes), the baked transfer function table and the per-macrocell
 // majorant extinction (rebuilt when the data or the TF changes), plus copies
 // of lights, planes and clip planes for kernels.
+#include "penumbra/render/majorant_grid.h"
 #include "penumbra/render/render_view.h"
 #include "penumbra/scene/scene.h"
 
@@ -20,10 +21,9 @@ class SceneResources {
 
   // A view for rendering the scene at its render size (update() first).
   RenderView view(const Scene& scene) const;
-  // Same, with another transfer function table (e.g. a technique's own).
   const TransferFunctionTable& tf_table() const { return tf_table_; }
   const MacrocellGrid& macrocells() const { return macrocells_; }
-  const std::vector<float>& majorants() const { return majorants_; }
+  const MajorantGrid& majorants() const { return majorants_; }
 
   // Memory of the shared structures (not counted as a technique's aux_bytes).
   std::uint64_t bytes() const;
@@ -33,10 +33,7 @@ class SceneResources {
   std::uint64_t tf_version_ = 0;
   MacrocellGrid macrocells_;
   TransferFunctionTable tf_table_;
-  std::vector<float> majorants_;
+  MajorantGrid majorants_;
 };
-
-// Per-macrocell maximum extinction of a TF table over a macrocell grid.
-std::vector<float> build_majorants(const MacrocellGrid& grid, const TransferFunctionTable& table);
 
 }  // namespace penumbra

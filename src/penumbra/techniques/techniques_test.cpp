@@ -1,6 +1,7 @@
 // The scene x technique matrix: every registered technique on several
 // procedural scenes gives finite, bounded, non-blank images; and exact
 // relations between techniques, compared through metrics.
+#include "penumbra/analysis/image_metrics.h"
 #include "penumbra/techniques/registry.h"
 #include "test_scene.h"
 
@@ -98,13 +99,6 @@ TEST(TechniqueMatrix, EveryTechniqueRendersEveryScene) {
       EXPECT_GT(stats.samples, 0u);
     }
   }
-}
-
-double rmse(const Image& a, const Image& b) {
-  double sum = 0.0;
-  for (std::size_t i = 0; i < a.pixel_count(); ++i)
-    for (int c = 0; c < 3; ++c) sum += std::pow(double(a.data()[i][c]) - double(b.data()[i][c]), 2.0);
-  return std::sqrt(sum / (3.0 * double(a.pixel_count())));
 }
 
 // With albedo 1, ambient 1 and no lights, lit single scattering reduces to

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <type_traits>
 
 namespace penumbra {
 namespace {
@@ -16,11 +17,21 @@ vec2 block_range(const T* data, ivec3 dims, ivec3 lo, ivec3 hi) {
   for (int z = lo.z; z <= hi.z; ++z) {
     for (int y = lo.y; y <= hi.y; ++y) {
       const T* row = data + std::int64_t(dims.x) * (y + std::int64_t(dims.y) * z);
-      for (int x = lo.x; x <= hi.x; ++x) {
-        const float v = static_cast<float>(row[x]);
-        if (!is_finite(v)) continue;  // non-finite samples are transparent
-        mn = std::min(mn, v);
-        mx = std::max(mx, v);
+      if constexpr (std::is_floating_point_v<T>) {
+        for (int x = lo.x; x <= hi.x; ++x) {
+          const float v = static_cast<float>(row[x]);
+          if (!is_finite(v)) continue;  // non-finite samples are transparent
+          mn = std::min(mn, v);
+          mx = std::max(mx, v);
+        }
+      } else {
+        T row_min = row[lo.x], row_max = row[lo.x];
+        for (int x = lo.x + 1; x <= hi.x; ++x) {
+          row_min = std::min(row_min, row[x]);
+          row_max = std::max(row_max, row[x]);
+        }
+        mn = std::min(mn, static_cast<float>(row_min));
+        mx = std::max(mx, static_cast<float>(row_max));
       }
     }
   }

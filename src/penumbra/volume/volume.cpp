@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
 namespace penumbra {
 
@@ -117,14 +118,25 @@ template <class T> ValueRange compute_range(const T* data, std::uint64_t count) 
     for (std::int64_t c = first; c < last; ++c) {
       Partial p;
       const std::uint64_t end = std::min<std::uint64_t>(count, std::uint64_t(c + 1) * kChunk);
-      for (std::uint64_t i = std::uint64_t(c) * kChunk; i < end; ++i) {
-        const float v = static_cast<float>(data[i]);
-        if (!is_finite(v)) {
-          ++p.non_finite;
-          continue;
+      const std::uint64_t begin = std::uint64_t(c) * kChunk;
+      if constexpr (std::is_floating_point_v<T>) {
+        for (std::uint64_t i = begin; i < end; ++i) {
+          const float v = static_cast<float>(data[i]);
+          if (!is_finite(v)) {
+            ++p.non_finite;
+            continue;
+          }
+          p.min = std::min(p.min, v);
+          p.max = std::max(p.max, v);
         }
-        p.min = std::min(p.min, v);
-        p.max = std::max(p.max, v);
+      } else {
+        T lo = data[begin], hi = data[begin];
+        for (std::uint64_t i = begin + 1; i < end; ++i) {
+          lo = std::min(lo, data[i]);
+          hi = std::max(hi, data[i]);
+        }
+        p.min = static_cast<float>(lo);
+        p.max = static_cast<float>(hi);
       }
       partial[static_cast<std::size_t>(c)] = p;
     }

@@ -12,7 +12,7 @@ class EmissionAbsorption final : public Technique {
 
   void render(const Scene& scene, Image& image, RenderStats* stats) override {
     const RenderView view = resources_.view(scene);
-    render_image(view, EmissionLighting{&view}, image, stats);
+    render_image(view, [&](const auto&) { return EmissionLighting{&view}; }, image, stats);
   }
 
   std::uint64_t aux_bytes() const override { return 0; }

@@ -12,7 +12,8 @@ class Phong final : public Technique {
 
   void render(const Scene& scene, Image& image, RenderStats* stats) override {
     const RenderView view = resources_.view(scene);
-    render_image(view, ScatteringLighting<NoShadows>{&view, {}, Shading::Phong}, image, stats);
+    render_image(
+        view, [&](const auto&) { return ScatteringLighting<NoShadows>{&view, {}, Shading::Phong}; }, image, stats);
   }
 
   std::uint64_t aux_bytes() const override { return 0; }

@@ -9,23 +9,23 @@
 namespace penumbra {
 namespace {
 
-struct ShadowRayVisibility {
+template <class Sampler> struct ShadowRayVisibility {
   const RenderView* view;
+  Sampler sampler;
   float density_scale;
-  PENUMBRA_HD float operator()(int, vec3 p, const LightSample& ls) const {
+  PENUMBRA_HD vec3 operator()(int, vec3 p, const LightSample& ls) const {
     RayStats unused;
-    return march_transmittance(*view, Ray{p, ls.to_light}, ls.distance, density_scale, unused);
+    return vec3(march_transmittance(*view, sampler, Ray{p, ls.to_light}, ls.distance, density_scale, unused));
   }
 };
 
 // Cache lookups inside the volume box; shadow rays outside it (plane hits).
-struct CachedVisibility {
-  const RenderView* view;
+template <class Sampler> struct CachedVisibility {
+  ShadowRayVisibility<Sampler> rays;
   const VolumeView* caches;
-  float density_scale;
-  PENUMBRA_HD float operator()(int light, vec3 p, const LightSample& ls) const {
-    if (view->box.contains(p)) return caches[light].sample(p);
-    return ShadowRayVisibility{view, density_scale}(light, p, ls);
+  PENUMBRA_HD vec3 operator()(int light, vec3 p, const LightSample& ls) const {
+    if (rays.view->box.contains(p)) return vec3(caches[light].sample(p));
+    return rays(light, p, ls);
   }
 };
 
@@ -61,10 +61,23 @@ class ShadowRays final : public Technique {
     const RenderView view = resources_.view(scene);
     const Shading shading = scene.material().shading;
     if (use_cache_) {
-      render_image(view, ScatteringLighting<CachedVisibility>{&view, {&view, cache_views_.data(), density_scale_}, shading},
-                   image, stats);
+      render_image(
+          view,
+          [&](const auto& sampler) {
+            using Rays = ShadowRayVisibility<std::decay_t<decltype(sampler)>>;
+            using Cached = CachedVisibility<std::decay_t<decltype(sampler)>>;
+            return ScatteringLighting<Cached>{&view, Cached{Rays{&view, sampler, density_scale_}, cache_views_.data()},
+                                              shading};
+          },
+          image, stats);
     } else {
-      render_image(view, ScatteringLighting<ShadowRayVisibility>{&view, {&view, density_scale_}, shading}, image, stats);
+      render_image(
+          view,
+          [&](const auto& sampler) {
+            using Rays = ShadowRayVisibility<std::decay_t<decltype(sampler)>>;
+            return ScatteringLighting<Rays>{&view, Rays{&view, sampler, density_scale_}, shading};
+          },
+          image, stats);
     }
   }
 

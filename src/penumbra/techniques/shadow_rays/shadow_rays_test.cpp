@@ -2,6 +2,7 @@
 #include "penumbra/render/lighting.h"
 #include "penumbra/render/render_loop.h"
 #include "penumbra/render/scene_resources.h"
+#include "penumbra/analysis/image_metrics.h"
 #include "penumbra/techniques/registry.h"
 #include "test_scene.h"
 
@@ -29,13 +30,6 @@ Scene lit_spheres(int image_size = 40) {
   return scene;
 }
 
-double rmse(const Image& a, const Image& b) {
-  double sum = 0.0;
-  for (std::size_t i = 0; i < a.pixel_count(); ++i)
-    for (int c = 0; c < 3; ++c) sum += std::pow(double(a.data()[i][c]) - double(b.data()[i][c]), 2.0);
-  return std::sqrt(sum / (3.0 * double(a.pixel_count())));
-}
-
 TEST(ShadowRays, ZeroShadowDensityIsUnshadowedSingleScattering) {
   const Scene scene = lit_spheres();
   const Image shadowless = render_with(scene, "shadow-rays", {{"shadow_density_scale", 0.0}});
@@ -43,7 +37,7 @@ TEST(ShadowRays, ZeroShadowDensityIsUnshadowedSingleScattering) {
   resources.update(scene);
   const RenderView v = resources.view(scene);
   Image expected;
-  render_image(v, ScatteringLighting<NoShadows>{&v, {}, Shading::Phase}, expected);
+  render_image(v, [&](const auto&) { return ScatteringLighting<NoShadows>{&v, {}, Shading::Phase}; }, expected);
   EXPECT_LT(rmse(shadowless, expected), 1e-6);
   // Shadows darken: with full density the image is darker somewhere.
   const Image shadowed = render_with(scene, "shadow-rays");

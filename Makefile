@@ -1,0 +1,31 @@
+# The two commands a new user types (see README.md): `make demo` and `make test`.
+# Both install the dependencies from Debian's packages if missing and build in
+# Release into build/.
+BUILD ?= build
+JOBS ?= $(shell nproc)
+
+.PHONY: all deps configure build demo test bench clean
+
+all: build
+
+deps:
+	@scripts/install-deps.sh
+
+configure: deps
+	@cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release -DPENUMBRA_BUILD_TESTS=ON > /dev/null
+
+build: configure
+	@cmake --build $(BUILD) -j $(JOBS)
+
+demo: build
+	@$(BUILD)/penumbra render --demo -o $(BUILD)/demo.png
+
+test: build
+	@ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
+
+bench: configure
+	@cmake -S . -B $(BUILD) -DPENUMBRA_BUILD_BENCHMARKS=ON > /dev/null
+	@cmake --build $(BUILD) -j $(JOBS)
+
+clean:
+	rm -rf $(BUILD)
