@@ -146,15 +146,15 @@ void read_volume_section(const json& j, const std::filesystem::path& base_dir, S
   scene.set_volume_source(std::move(source));
 }
 
-void read_transfer_function(const json& j, Scene& scene) {
-  const ObjectReader r(j, "transfer_function", {"points", "range", "unit_length", "density_scale"});
+TransferFunction read_transfer_function(const json& j, const std::string& section) {
+  const ObjectReader r(j, section, {"points", "range", "unit_length", "density_scale"});
   TransferFunction tf;
   if (r.has("points")) {
     const json& pts = r.at("points");
-    if (!pts.is_array() || pts.empty()) throw InvalidScene("transfer_function.points", "expected a non-empty array");
+    if (!pts.is_array() || pts.empty()) throw InvalidScene(section + ".points", "expected a non-empty array");
     std::vector<TransferFunctionPoint> points;
     for (std::size_t i = 0; i < pts.size(); ++i) {
-      const std::string key = fmt::format("transfer_function.points[{}]", i);
+      const std::string key = fmt::format("{}.points[{}]", section, i);
       const json& p = pts[i];
       if (!p.is_array() || p.size() != 5) throw InvalidScene(key, "expected [value, r, g, b, alpha]");
       TransferFunctionPoint point;
@@ -167,33 +167,33 @@ void read_transfer_function(const json& j, Scene& scene) {
     try {
       tf = TransferFunction(std::move(points));
     } catch (const InvalidArgument& e) {
-      throw InvalidScene("transfer_function." + e.name(), e.what());
+      throw InvalidScene(section + "." + e.name(), e.what());
     }
   }
   if (r.has("range")) {
     const json& range = r.at("range");
     if (range.is_string()) {
       if (range.get<std::string>() != "data") {
-        throw InvalidScene("transfer_function.range", "expected \"data\" or [min, max]");
+        throw InvalidScene(section + ".range", "expected \"data\" or [min, max]");
       }
     } else if (range.is_array() && range.size() == 2) {
-      const vec2 lo_hi(ObjectReader::to_float(range[0], "transfer_function.range"),
-                       ObjectReader::to_float(range[1], "transfer_function.range"));
-      if (!(lo_hi.x < lo_hi.y)) throw InvalidScene("transfer_function.range", "min must be below max");
+      const vec2 lo_hi(ObjectReader::to_float(range[0], section + ".range"),
+                       ObjectReader::to_float(range[1], section + ".range"));
+      if (!(lo_hi.x < lo_hi.y)) throw InvalidScene(section + ".range", "min must be below max");
       tf.set_range(lo_hi);
     } else {
-      throw InvalidScene("transfer_function.range", "expected \"data\" or [min, max], got " + type_name(range));
+      throw InvalidScene(section + ".range", "expected \"data\" or [min, max], got " + type_name(range));
     }
   }
   if (r.has("unit_length")) {
     const float u = r.number("unit_length", 1.0f);
-    if (!(u > 0.0f)) throw InvalidScene("transfer_function.unit_length", "must be positive");
+    if (!(u > 0.0f)) throw InvalidScene(section + ".unit_length", "must be positive");
     tf.set_unit_length(u);
   }
   const float density = r.number("density_scale", 1.0f);
-  if (!(density >= 0.0f)) throw InvalidScene("transfer_function.density_scale", "must be >= 0");
+  if (!(density >= 0.0f)) throw InvalidScene(section + ".density_scale", "must be >= 0");
   tf.set_density_scale(density);
-  scene.set_transfer_function(std::move(tf));
+  return tf;
 }
 
 Camera read_camera(const json& j, const Box3& box) {
@@ -224,23 +224,54 @@ std::vector<Light> read_lights(const json& j) {
   std::vector<Light> lights;
   for (std::size_t i = 0; i < j.size(); ++i) {
     const std::string path = fmt::format("lights[{}]", i);
-    const ObjectReader r(j[i], path, {"type", "direction", "position", "color", "intensity"});
+    const ObjectReader r(j[i], path, {"type", "direction", "position", "color", "intensity", "angle_deg", "profile", "radius"});
     Light l;
     const std::string type = r.string("type", "directional");
+    // Which keys each type takes; any other is an error naming the key.
+    auto only = [&](std::initializer_list<const char*> allowed) {
+      for (const char* key : {"direction", "position", "angle_deg", "profile", "radius"}) {
+        bool ok = false;
+        for (const char* a : allowed) ok = ok || std::string_view(a) == key;
+        if (!ok && r.has(key)) throw InvalidScene(r.key(key), fmt::format("a {} light has no {}", type, key));
+      }
+    };
     if (type == "directional") {
       l.type = LightType::Directional;
-      if (r.has("position")) throw InvalidScene(path + ".position", "a directional light has a direction, not a position");
-      l.direction = r.vector3("direction", l.direction);
+      only({"direction"});
     } else if (type == "point") {
       l.type = LightType::Point;
-      if (r.has("direction")) throw InvalidScene(path + ".direction", "a point light has a position, not a direction");
-      if (!r.has("position")) throw InvalidScene(path + ".position", "a point light needs a position");
-      l.position = r.vector3("position", l.position);
+      only({"position"});
+    } else if (type == "distant") {
+      l.type = LightType::Distant;
+      only({"direction", "angle_deg", "profile"});
+    } else if (type == "sphere") {
+      l.type = LightType::Sphere;
+      only({"position", "radius"});
+    } else if (type == "disk") {
+      l.type = LightType::Disk;
+      only({"position", "direction", "radius"});
+    } else if (type == "environment") {
+      l.type = LightType::Environment;
+      only({});
     } else {
-      throw InvalidScene(path + ".type", fmt::format("expected \"directional\" or \"point\", got \"{}\"", type));
+      throw InvalidScene(path + ".type", fmt::format("expected one of directional, point, distant, sphere, disk, "
+                                                     "environment; got \"{}\"", type));
     }
+    if (!l.at_infinity() && !r.has("position")) throw InvalidScene(path + ".position", fmt::format("a {} light needs a position", type));
+    l.direction = r.vector3("direction", l.direction);
+    l.position = r.vector3("position", l.position);
     l.color = r.vector3("color", l.color);
     l.intensity = r.number("intensity", l.intensity);
+    l.angle_deg = r.number("angle_deg", l.angle_deg);
+    l.radius = r.number("radius", l.radius);
+    const std::string profile = r.string("profile", "uniform");
+    if (profile == "uniform") {
+      l.profile = LightProfile::Uniform;
+    } else if (profile == "gaussian") {
+      l.profile = LightProfile::Gaussian;
+    } else {
+      throw InvalidScene(path + ".profile", fmt::format("expected \"uniform\" or \"gaussian\", got \"{}\"", profile));
+    }
     lights.push_back(l);
   }
   return lights;
@@ -340,14 +371,18 @@ Scene parse_scene(std::string_view json_text, const std::filesystem::path& base_
   } catch (const json::parse_error& e) {
     throw InvalidScene("(root)", fmt::format("not valid JSON: {}", e.what()));
   }
-  const ObjectReader r(j, "", {"version", "volume", "transfer_function", "camera", "lights", "material", "render",
-                              "planes", "clip_planes", "background"});
+  const ObjectReader r(j, "", {"version", "volume", "transfer_function", "shadow_transfer_function", "camera",
+                              "lights", "material", "render", "planes", "clip_planes", "background"});
   if (r.integer("version", 1) != 1) throw InvalidScene("version", "only scene version 1 is supported");
   if (!r.has("volume")) throw InvalidScene("volume", "missing: a scene needs a volume (\"file\" or \"builtin\")");
   Scene scene;
   read_volume_section(r.at("volume"), base_dir, scene);
   if (r.has("transfer_function")) {
-    read_transfer_function(r.at("transfer_function"), scene);
+    scene.set_transfer_function(read_transfer_function(r.at("transfer_function"), "transfer_function"));
+  }
+  if (r.has("shadow_transfer_function")) {
+    scene.set_shadow_transfer_function(
+        read_transfer_function(r.at("shadow_transfer_function"), "shadow_transfer_function"));
   }
   const Box3 box = scene.volume().world_box();
   scene.set_camera(read_camera(r.has("camera") ? r.at("camera") : json::object(), box));
@@ -372,6 +407,15 @@ namespace {
 
 json to_json(vec3 v) { return json::array({v.x, v.y, v.z}); }
 
+json to_json(const TransferFunction& tf) {
+  json points = json::array();
+  for (const TransferFunctionPoint& p : tf.points()) points.push_back({p.value, p.color.r, p.color.g, p.color.b, p.alpha});
+  json out{{"points", points}, {"density_scale", tf.density_scale()}};
+  out["range"] = tf.range() ? json::array({tf.range()->x, tf.range()->y}) : json("data");
+  if (tf.unit_length()) out["unit_length"] = *tf.unit_length();
+  return out;
+}
+
 }  // namespace
 
 std::string write_scene_json(const Scene& scene) {
@@ -390,13 +434,8 @@ std::string write_scene_json(const Scene& scene) {
   volume["time_step"] = scene.time_step();
   j["volume"] = volume;
 
-  const TransferFunction& tf = scene.transfer_function();
-  json points = json::array();
-  for (const TransferFunctionPoint& p : tf.points()) points.push_back({p.value, p.color.r, p.color.g, p.color.b, p.alpha});
-  json tf_json{{"points", points}, {"density_scale", tf.density_scale()}};
-  tf_json["range"] = tf.range() ? json::array({tf.range()->x, tf.range()->y}) : json("data");
-  if (tf.unit_length()) tf_json["unit_length"] = *tf.unit_length();
-  j["transfer_function"] = tf_json;
+  j["transfer_function"] = to_json(scene.transfer_function());
+  if (scene.shadow_transfer_function()) j["shadow_transfer_function"] = to_json(*scene.shadow_transfer_function());
 
   const Camera& c = scene.camera();
   j["camera"] = {{"eye", to_json(c.eye)}, {"target", to_json(c.target)}, {"up", to_json(c.up)},
@@ -406,12 +445,33 @@ std::string write_scene_json(const Scene& scene) {
   json lights = json::array();
   for (const Light& l : scene.lights()) {
     json lj{{"color", to_json(l.color)}, {"intensity", l.intensity}};
-    if (l.type == LightType::Directional) {
-      lj["type"] = "directional";
-      lj["direction"] = to_json(l.direction);
-    } else {
-      lj["type"] = "point";
-      lj["position"] = to_json(l.position);
+    switch (l.type) {
+      case LightType::Directional:
+        lj["type"] = "directional";
+        lj["direction"] = to_json(l.direction);
+        break;
+      case LightType::Point:
+        lj["type"] = "point";
+        lj["position"] = to_json(l.position);
+        break;
+      case LightType::Distant:
+        lj["type"] = "distant";
+        lj["direction"] = to_json(l.direction);
+        lj["angle_deg"] = l.angle_deg;
+        lj["profile"] = l.profile == LightProfile::Uniform ? "uniform" : "gaussian";
+        break;
+      case LightType::Sphere:
+        lj["type"] = "sphere";
+        lj["position"] = to_json(l.position);
+        lj["radius"] = l.radius;
+        break;
+      case LightType::Disk:
+        lj["type"] = "disk";
+        lj["position"] = to_json(l.position);
+        lj["direction"] = to_json(l.direction);
+        lj["radius"] = l.radius;
+        break;
+      case LightType::Environment: lj["type"] = "environment"; break;
     }
     lights.push_back(lj);
   }

@@ -14,6 +14,11 @@ bool SceneResources::update(const Scene& scene) {
   if (v.transfer_function != tf_version_) {
     tf_table_ = TransferFunctionTable(scene.transfer_function(), scene.tf_value_range(), scene.unit_length());
     majorants_ = build_majorant_grid(macrocells_, tf_table_);
+    separate_shadow_tf_ = scene.shadow_transfer_function().has_value();
+    if (separate_shadow_tf_) {
+      shadow_tf_table_ = TransferFunctionTable(scene.shadow_tf(), scene.shadow_tf_value_range(), scene.shadow_unit_length());
+      shadow_majorants_ = build_majorant_grid(macrocells_, shadow_tf_table_);
+    }
     tf_version_ = v.transfer_function;
     changed = true;
   }
@@ -42,6 +47,16 @@ RenderView SceneResources::view(const Scene& scene) const {
   r.camera = scene.camera().view();
   r.width = scene.render().width;
   r.height = scene.render().height;
+  return r;
+}
+
+RenderView SceneResources::shadow_view(const Scene& scene) const {
+  RenderView r = view(scene);
+  if (separate_shadow_tf_) {
+    r.tf = shadow_tf_table_.view();
+    r.majorants = shadow_majorants_.majorant.data();
+    r.empty_distance = shadow_majorants_.empty_distance.data();
+  }
   return r;
 }
 

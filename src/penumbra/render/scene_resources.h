@@ -21,6 +21,9 @@ class SceneResources {
 
   // A view for rendering the scene at its render size (update() first).
   RenderView view(const Scene& scene) const;
+  // The same view with the shadow TF's table and majorants, for shadow rays
+  // and light-space structures (identical to view() without a shadow TF).
+  RenderView shadow_view(const Scene& scene) const;
   const TransferFunctionTable& tf_table() const { return tf_table_; }
   const MacrocellGrid& macrocells() const { return macrocells_; }
   const MajorantGrid& majorants() const { return majorants_; }
@@ -34,6 +37,9 @@ class SceneResources {
   MacrocellGrid macrocells_;
   TransferFunctionTable tf_table_;
   MajorantGrid majorants_;
+  bool separate_shadow_tf_ = false;
+  TransferFunctionTable shadow_tf_table_;
+  MajorantGrid shadow_majorants_;
 };
 
 }  // namespace penumbra

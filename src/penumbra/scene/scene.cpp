@@ -78,6 +78,11 @@ void Scene::set_transfer_function(TransferFunction tf) {
   versions_.transfer_function = next_version();
 }
 
+void Scene::set_shadow_transfer_function(std::optional<TransferFunction> tf) {
+  shadow_transfer_function_ = std::move(tf);
+  versions_.transfer_function = next_version();
+}
+
 void Scene::set_camera(Camera camera) {
   camera.validate();
   camera_ = camera;
@@ -88,7 +93,15 @@ void Scene::set_lights(std::vector<Light> lights) {
   for (std::size_t i = 0; i < lights.size(); ++i) {
     Light& l = lights[i];
     const std::string key = fmt::format("lights[{}]", i);
-    if (l.type == LightType::Directional) l.direction = unit_vector(l.direction, key + ".direction");
+    if (l.type == LightType::Directional || l.type == LightType::Distant || l.type == LightType::Disk) {
+      l.direction = unit_vector(l.direction, key + ".direction");
+    }
+    if (!(l.angle_deg >= 0.0f && l.angle_deg < 90.0f)) {
+      throw InvalidScene(key + ".angle_deg", fmt::format("must be in [0, 90), got {}", l.angle_deg));
+    }
+    if (!(l.radius >= 0.0f && is_finite(l.radius))) {
+      throw InvalidScene(key + ".radius", fmt::format("must be finite and >= 0, got {}", l.radius));
+    }
     if (!finite3(l.position)) throw InvalidScene(key + ".position", "must be finite");
     check_colour(l.color, key + ".color");
     if (!(l.intensity >= 0.0f && is_finite(l.intensity))) {
@@ -148,6 +161,19 @@ vec2 Scene::tf_value_range() const {
 
 float Scene::unit_length() const {
   return transfer_function_.unit_length().value_or(min_component(volume().spacing()));
+}
+
+const TransferFunction& Scene::shadow_tf() const {
+  return shadow_transfer_function_ ? *shadow_transfer_function_ : transfer_function_;
+}
+
+vec2 Scene::shadow_tf_value_range() const {
+  const ValueRange r = volume().value_range();
+  return shadow_tf().resolve_range(vec2(r.min, r.max));
+}
+
+float Scene::shadow_unit_length() const {
+  return shadow_tf().unit_length().value_or(min_component(volume().spacing()));
 }
 
 float Scene::step_world() const { return render_.step * min_component(volume().spacing()); }

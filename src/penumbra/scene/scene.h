@@ -76,6 +76,12 @@ class Scene {
 
   const TransferFunction& transfer_function() const { return transfer_function_; }
   void set_transfer_function(TransferFunction tf);
+  // A separate TF for light-space structures and shadow rays (generation and
+  // rendering may use different TFs, Weidner & Linsen); nullopt = the same TF.
+  // Its range and unit length resolve like the main TF's. Changing it bumps
+  // the transfer_function version.
+  const std::optional<TransferFunction>& shadow_transfer_function() const { return shadow_transfer_function_; }
+  void set_shadow_transfer_function(std::optional<TransferFunction> tf);
 
   const Camera& camera() const { return camera_; }
   void set_camera(Camera camera);
@@ -102,6 +108,10 @@ class Scene {
   // Derived quantities every technique uses.
   vec2 tf_value_range() const;   // the TF range in data units
   float unit_length() const;     // the TF's reference length in world units
+  // The same for the TF that shadows use (the shadow TF if set, else the TF).
+  const TransferFunction& shadow_tf() const;
+  vec2 shadow_tf_value_range() const;
+  float shadow_unit_length() const;
   float step_world() const;      // render.step in world units
 
  private:
@@ -111,6 +121,7 @@ class Scene {
   VolumeSource volume_source_;
   int time_step_ = 0;
   TransferFunction transfer_function_;
+  std::optional<TransferFunction> shadow_transfer_function_;
   Camera camera_;
   std::vector<Light> lights_;
   Material material_;

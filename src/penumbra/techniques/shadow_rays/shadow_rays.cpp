@@ -44,7 +44,7 @@ class ShadowRays final : public Technique {
     const bool stale = shared_changed || caches_.empty() || v.lights != lights_version_ ||
                        v.geometry != geometry_version_ || !(params == cache_params_);
     if (!stale) return;
-    const RenderView view = resources_.view(scene);
+    const RenderView view = resources_.shadow_view(scene);
     caches_.clear();
     cache_views_.clear();
     for (const Light& light : scene.lights()) {
@@ -59,6 +59,7 @@ class ShadowRays final : public Technique {
 
   void render(const Scene& scene, Image& image, RenderStats* stats) override {
     const RenderView view = resources_.view(scene);
+    const RenderView shadows = resources_.shadow_view(scene);
     const Shading shading = scene.material().shading;
     if (use_cache_) {
       render_image(
@@ -66,8 +67,8 @@ class ShadowRays final : public Technique {
           [&](const auto& sampler) {
             using Rays = ShadowRayVisibility<std::decay_t<decltype(sampler)>>;
             using Cached = CachedVisibility<std::decay_t<decltype(sampler)>>;
-            return ScatteringLighting<Cached>{&view, Cached{Rays{&view, sampler, density_scale_}, cache_views_.data()},
-                                              shading};
+            return ScatteringLighting<Cached>{
+                &view, Cached{Rays{&shadows, sampler, density_scale_}, cache_views_.data()}, shading};
           },
           image, stats);
     } else {
@@ -75,7 +76,7 @@ class ShadowRays final : public Technique {
           view,
           [&](const auto& sampler) {
             using Rays = ShadowRayVisibility<std::decay_t<decltype(sampler)>>;
-            return ScatteringLighting<Rays>{&view, Rays{&view, sampler, density_scale_}, shading};
+            return ScatteringLighting<Rays>{&view, Rays{&shadows, sampler, density_scale_}, shading};
           },
           image, stats);
     }
