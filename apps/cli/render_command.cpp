@@ -56,7 +56,8 @@ void run_render(const RenderOptions& options) {
   fmt::print(stderr, "{}: {} {}x{}, prepare {:.1f} ms, frame {:.1f} ms, {:.2f} M samples\n",
              scene.volume().source(), info.name, image.width(), image.height(), ms(t1 - t0), ms(t2 - t1),
              double(stats.samples) * 1e-6);
-  fmt::print("{}\n", std::filesystem::absolute(output).string());
+  std::fflush(stderr);
+  fmt::print("{}\n", std::filesystem::absolute(output).lexically_normal().string());
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include "penumbra/io/scene_json.h"
 
 #include "penumbra/base/error.h"
+#include "penumbra/io/paraview_preset.h"
 #include "penumbra/io/volume_reader.h"
 #include "penumbra/volume/procedural.h"
 
@@ -146,9 +147,17 @@ void read_volume_section(const json& j, const std::filesystem::path& base_dir, S
   scene.set_volume_source(std::move(source));
 }
 
-TransferFunction read_transfer_function(const json& j, const std::string& section) {
-  const ObjectReader r(j, section, {"points", "range", "unit_length", "density_scale"});
+TransferFunction read_transfer_function(const json& j, const std::string& section,
+                                        const std::filesystem::path& base_dir) {
+  const ObjectReader r(j, section, {"points", "preset", "range", "unit_length", "density_scale"});
   TransferFunction tf;
+  if (r.has("points") && r.has("preset")) throw InvalidScene(section, "give \"points\" or \"preset\", not both");
+  if (r.has("preset")) {
+    // A ParaView colour-map preset: {"file": "presets.json", "name": "Cool to Warm"} (name optional).
+    const ObjectReader p(r.at("preset"), section + ".preset", {"file", "name"});
+    if (!p.has("file")) throw InvalidScene(section + ".preset.file", "missing: the preset JSON file");
+    tf = read_paraview_preset(resolve(base_dir, p.string("file", "")), p.string("name", ""));
+  }
   if (r.has("points")) {
     const json& pts = r.at("points");
     if (!pts.is_array() || pts.empty()) throw InvalidScene(section + ".points", "expected a non-empty array");
@@ -378,11 +387,11 @@ Scene parse_scene(std::string_view json_text, const std::filesystem::path& base_
   Scene scene;
   read_volume_section(r.at("volume"), base_dir, scene);
   if (r.has("transfer_function")) {
-    scene.set_transfer_function(read_transfer_function(r.at("transfer_function"), "transfer_function"));
+    scene.set_transfer_function(read_transfer_function(r.at("transfer_function"), "transfer_function", base_dir));
   }
   if (r.has("shadow_transfer_function")) {
     scene.set_shadow_transfer_function(
-        read_transfer_function(r.at("shadow_transfer_function"), "shadow_transfer_function"));
+        read_transfer_function(r.at("shadow_transfer_function"), "shadow_transfer_function", base_dir));
   }
   const Box3 box = scene.volume().world_box();
   scene.set_camera(read_camera(r.has("camera") ? r.at("camera") : json::object(), box));

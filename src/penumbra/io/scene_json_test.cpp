@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 
 namespace penumbra {
 namespace {
@@ -136,6 +137,26 @@ TEST(SceneJson, ErrorsNameTheKey) {
   EXPECT_EQ(error_key(R"({"volume": {"builtin": "spheres"}, "material": {"shading": "toon"}})"), "material.shading");
   EXPECT_EQ(error_key(R"({"volume": )"), "(root)");
   EXPECT_EQ(error_key(R"([1, 2])"), "(root)");
+}
+
+TEST(SceneJson, TransferFunctionsCanComeFromParaViewPresets) {
+  const auto dir = std::filesystem::temp_directory_path() / "penumbra_scene_json_preset";
+  std::filesystem::create_directories(dir);
+  {
+    std::ofstream out(dir / "presets.json");
+    out << R"([{"Name": "Ramp", "RGBPoints": [0, 0, 0, 0, 10, 1, 0.5, 1], "Points": [0, 0, 0.5, 0, 10, 0.6, 0.5, 0]}])";
+  }
+  const Scene s = parse_scene(R"({"volume": {"builtin": "spheres"},
+      "transfer_function": {"preset": {"file": "presets.json", "name": "Ramp"}, "range": [0, 1]}})", dir);
+  EXPECT_NEAR(s.transfer_function().evaluate(1.0f).a, 0.6f, 1e-6f);
+  EXPECT_NEAR(s.transfer_function().evaluate(1.0f).g, 0.21404f, 1e-4f);  // sRGB 0.5 decoded to linear
+  EXPECT_EQ(*s.transfer_function().range(), vec2(0.0f, 1.0f));
+  EXPECT_THROW(parse_scene(R"({"volume": {"builtin": "spheres"},
+      "transfer_function": {"preset": {"file": "presets.json", "name": "Nope"}}})", dir), IoError);
+  EXPECT_EQ(error_key(R"({"volume": {"builtin": "spheres"}, "transfer_function": {"preset": {"name": "x"}}})"),
+            "transfer_function.preset.file");
+  EXPECT_EQ(error_key(R"({"volume": {"builtin": "spheres"}, "transfer_function": {"preset": {"file": "a"},
+      "points": [[0, 1, 1, 1, 1]]}})"), "transfer_function");
 }
 
 TEST(SceneJson, MissingFilesAreIoErrorsNamingThePath) {

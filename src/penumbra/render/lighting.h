@@ -25,11 +25,12 @@ PENUMBRA_HD inline bool blocked_by_planes(const RenderView& v, vec3 p, const Lig
   return false;
 }
 
-// Unit shading normal from the gradient, facing the viewer; returns false
-// where the gradient vanishes (homogeneous regions), which are then lit as
-// if facing the light without a highlight.
+// Unit shading normal from the gradient (precomputed normals when the view
+// has them), facing the viewer; returns false where the gradient vanishes
+// (homogeneous regions), which are then lit as if facing the light without a
+// highlight.
 PENUMBRA_HD inline bool shading_normal(const RenderView& v, const SamplePoint& s, vec3& normal) {
-  const vec3 g = v.volume.gradient_index(s.index);
+  const vec3 g = v.normals.texels ? v.normals.sample(s.index) : v.volume.gradient_index(s.index);
   const float len = glm::length(g);
   if (!(len > 0.0f) || !is_finite(len)) return false;
   normal = -g / len;  // from high to low values: outward for a bright object

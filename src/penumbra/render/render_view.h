@@ -11,6 +11,7 @@
 #include "penumbra/scene/plane.h"
 #include "penumbra/scene/transfer_function.h"
 #include "penumbra/volume/macrocell_grid.h"
+#include "penumbra/volume/normal_volume.h"
 #include "penumbra/volume/volume_view.h"
 
 #include <cstdint>
@@ -23,7 +24,8 @@ struct RenderView {
   const float* majorants = nullptr;  // per macrocell: the largest sigma_t any sample there can have (0 = empty)
   const std::uint8_t* empty_distance = nullptr;  // per macrocell: chessboard distance to a non-empty one
   TransferFunctionView tf;
-  Box3 box;  // the volume's world box
+  NormalView normals;  // precomputed shading normals, or texels == nullptr for on-the-fly gradients
+  Box3 box;            // the volume's world box
 
   const vec4* clip_planes = nullptr;
   int clip_plane_count = 0;

@@ -2,11 +2,12 @@
 
 namespace penumbra {
 
-bool SceneResources::update(const Scene& scene) {
+bool SceneResources::update(const Scene& scene, bool phong) {
   const SceneVersions& v = scene.versions();
   bool changed = false;
   if (v.data != data_version_) {
     macrocells_ = MacrocellGrid(scene.volume_view());
+    normals_ = NormalVolume();
     data_version_ = v.data;
     tf_version_ = 0;  // the TF range may depend on the data
     changed = true;
@@ -22,6 +23,9 @@ bool SceneResources::update(const Scene& scene) {
     tf_version_ = v.transfer_function;
     changed = true;
   }
+  if ((phong || scene.material().shading == Shading::Phong) && normals_.empty()) {
+    normals_ = NormalVolume(scene.volume_view());
+  }
   return changed;
 }
 
@@ -32,6 +36,7 @@ RenderView SceneResources::view(const Scene& scene) const {
   r.majorants = majorants_.majorant.data();
   r.empty_distance = majorants_.empty_distance.data();
   r.tf = tf_table_.view();
+  r.normals = normals_.view();
   r.box = scene.volume().world_box();
   r.clip_planes = scene.clip_planes().data();
   r.clip_plane_count = static_cast<int>(scene.clip_planes().size());
@@ -61,7 +66,7 @@ RenderView SceneResources::shadow_view(const Scene& scene) const {
 }
 
 std::uint64_t SceneResources::bytes() const {
-  return macrocells_.bytes() + majorants_.bytes() +
+  return macrocells_.bytes() + normals_.bytes() + majorants_.bytes() +
          std::uint64_t(tf_table_.view().size) * sizeof(vec4);
 }
 

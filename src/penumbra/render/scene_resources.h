@@ -1,9 +1,9 @@
 #pragma once
 // SceneResources: the structures every technique shares, kept up to date with
-// the scene's version counters: the macrocell min/max grid (rebuilt when the
-// data changes), the baked transfer function table and the per-macrocell
-// majorant extinction (rebuilt when the data or the TF changes), plus copies
-// of lights, planes and clip planes for kernels.
+// the scene's version counters: the macrocell min/max grid and, when Phong
+// shading needs them, precomputed shading normals (rebuilt when the data
+// changes), the baked transfer function table and the per-macrocell majorant
+// extinction (rebuilt when the data or the TF changes).
 #include "penumbra/render/majorant_grid.h"
 #include "penumbra/render/render_view.h"
 #include "penumbra/scene/scene.h"
@@ -17,7 +17,9 @@ class SceneResources {
  public:
   // Brings the shared structures up to date; returns true when the data or
   // the TF changed since the last call (so techniques know to rebuild too).
-  bool update(const Scene& scene);
+  // Shading normals are built when `phong` is true or the scene's material
+  // asks for Phong shading.
+  bool update(const Scene& scene, bool phong = false);
 
   // A view for rendering the scene at its render size (update() first).
   RenderView view(const Scene& scene) const;
@@ -35,6 +37,7 @@ class SceneResources {
   std::uint64_t data_version_ = 0;
   std::uint64_t tf_version_ = 0;
   MacrocellGrid macrocells_;
+  NormalVolume normals_;
   TransferFunctionTable tf_table_;
   MajorantGrid majorants_;
   bool separate_shadow_tf_ = false;
