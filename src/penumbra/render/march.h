@@ -72,6 +72,7 @@ class MacrocellWalk {
   PENUMBRA_HD MacrocellWalk(const RenderView& v, const Ray& ray, float t)
       : v_(v), size_(float(v.macrocells.cell_size)), origin_(v.volume.index_from_world(ray.origin)),
         dir_(ray.direction / v.volume.spacing) {
+    for (int a = 0; a < 3; ++a) inv_dir_[a] = dir_[a] != 0.0f ? 1.0f / dir_[a] : 0.0f;
     restart(t);
   }
 
@@ -99,7 +100,7 @@ class MacrocellWalk {
     for (int a = 0; a < 3; ++a) {
       if (dir_[a] == 0.0f) continue;
       const float bound = dir_[a] > 0.0f ? float(cell_[a] + radius + 1) * size_ : float(cell_[a] - radius) * size_;
-      t_exit = glm::min(t_exit, (bound - origin_[a]) / dir_[a]);
+      t_exit = glm::min(t_exit, (bound - origin_[a]) * inv_dir_[a]);
     }
     if (!(t_exit > cell_exit())) return step();
     restart(t_exit);
@@ -125,12 +126,12 @@ class MacrocellWalk {
       }
       if (dir_[a] > 0.0f) {
         step_[a] = 1;
-        t_next_[a] = (float(cell_[a] + 1) * size_ - origin_[a]) / dir_[a];
-        t_delta_[a] = size_ / dir_[a];
+        t_next_[a] = (float(cell_[a] + 1) * size_ - origin_[a]) * inv_dir_[a];
+        t_delta_[a] = size_ * inv_dir_[a];
       } else if (dir_[a] < 0.0f) {
         step_[a] = -1;
-        t_next_[a] = (float(cell_[a]) * size_ - origin_[a]) / dir_[a];
-        t_delta_[a] = -size_ / dir_[a];
+        t_next_[a] = (float(cell_[a]) * size_ - origin_[a]) * inv_dir_[a];
+        t_delta_[a] = -size_ * inv_dir_[a];
       } else {
         step_[a] = 0;
         t_next_[a] = kInfinity;
@@ -143,6 +144,7 @@ class MacrocellWalk {
   float size_;
   vec3 origin_;
   vec3 dir_;
+  vec3 inv_dir_{0.0f};
   float t_ = 0.0f;
   bool inside_ = true;
   ivec3 cell_{0};
@@ -275,7 +277,8 @@ PENUMBRA_HD float march_transmittance(const RenderView& v, const Sampler& sample
   float t;
   while (cursor.next(k, t)) {
     ++samples;
-    depth += tf.lookup(sampler(o + t * d)).a * grid.length(k);
+    const float value = sampler(o + t * d);
+    depth += (Sampler::kAlwaysFinite ? tf.lookup_finite(value) : tf.lookup(value)).a * grid.length(k);
     if (depth * density_scale >= kMaxOpticalDepth) break;
   }
   stats.samples += samples;
@@ -327,7 +330,7 @@ PENUMBRA_HD vec4 march_ray(const RenderView& v, const Sampler& sampler, const Ra
     ++samples;
     const vec3 p = o + t * d;
     const float value = sampler(p);
-    const vec4 c = tf.lookup(value);
+    const vec4 c = Sampler::kAlwaysFinite ? tf.lookup_finite(value) : tf.lookup(value);
     if (c.a <= 0.0f) continue;
     const float alpha = 1.0f - exp_nonpositive(-c.a * grid.length(k));
     const SamplePoint s{ray.at(t), p, value, vec3(c), c.a, ray.direction};

@@ -2,7 +2,7 @@
 
 namespace penumbra {
 
-bool SceneResources::update(const Scene& scene, bool phong) {
+bool SceneResources::update(const Scene& scene, bool normals) {
   const SceneVersions& v = scene.versions();
   bool changed = false;
   if (v.data != data_version_) {
@@ -23,7 +23,7 @@ bool SceneResources::update(const Scene& scene, bool phong) {
     tf_version_ = v.transfer_function;
     changed = true;
   }
-  if ((phong || scene.material().shading == Shading::Phong) && normals_.empty()) {
+  if (normals && normals_.empty()) {
     normals_ = NormalVolume(scene.volume_view());
   }
   return changed;

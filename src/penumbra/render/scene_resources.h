@@ -17,9 +17,9 @@ class SceneResources {
  public:
   // Brings the shared structures up to date; returns true when the data or
   // the TF changed since the last call (so techniques know to rebuild too).
-  // Shading normals are built when `phong` is true or the scene's material
-  // asks for Phong shading.
-  bool update(const Scene& scene, bool phong = false);
+  // Shading normals are built (once per data change) when `normals` is true:
+  // techniques that shade with Phong pass it.
+  bool update(const Scene& scene, bool normals = false);
 
   // A view for rendering the scene at its render size (update() first).
   RenderView view(const Scene& scene) const;

@@ -6,10 +6,15 @@
 #include "penumbra/base/math.h"
 
 #include <cstdint>
+#include <type_traits>
 
 namespace penumbra {
 
 template <class T> struct VolumeSampler {
+  // Samples of integer grids are always finite, so the TF lookup can skip
+  // its NaN/inf check.
+  static constexpr bool kAlwaysFinite = std::is_integral_v<T>;
+
   const T* data = nullptr;
   ivec3 dims{0};
   ivec3 max_base{0};  // largest cell origin: dims - 2, at least 0

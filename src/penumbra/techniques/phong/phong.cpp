@@ -8,7 +8,7 @@ namespace {
 
 class Phong final : public Technique {
  public:
-  void prepare(const Scene& scene, const ParameterValues&) override { resources_.update(scene, /*phong=*/true); }
+  void prepare(const Scene& scene, const ParameterValues&) override { resources_.update(scene, /*normals=*/true); }
 
   void render(const Scene& scene, Image& image, RenderStats* stats) override {
     const RenderView view = resources_.view(scene);

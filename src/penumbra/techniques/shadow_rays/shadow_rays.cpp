@@ -32,7 +32,7 @@ template <class Sampler> struct CachedVisibility {
 class ShadowRays final : public Technique {
  public:
   void prepare(const Scene& scene, const ParameterValues& params) override {
-    const bool shared_changed = resources_.update(scene);
+    const bool shared_changed = resources_.update(scene, scene.material().shading == Shading::Phong);
     density_scale_ = float(params.number("shadow_density_scale"));
     use_cache_ = params.flag("shadow_cache");
     if (!use_cache_) {
