@@ -97,17 +97,16 @@ std::filesystem::path resolve(const std::filesystem::path& base_dir, const std::
   return p.is_absolute() ? p : base_dir / p;
 }
 
-void read_volume_section(const json& j, const std::filesystem::path& base_dir, Scene& scene) {
+void read_volume_section(const json& j, const std::filesystem::path& base_dir, const SceneParseOptions& options,
+                         Scene& scene) {
   const ObjectReader r(j, "volume", {"file", "builtin", "size", "time_step", "spacing", "origin"});
   VolumeSource source;
-  std::shared_ptr<Volume> volume;
   if (r.has("file") == r.has("builtin")) throw InvalidScene("volume", "give exactly one of \"file\" and \"builtin\"");
+  std::filesystem::path resolved;
   if (r.has("file")) {
     if (r.has("size")) throw InvalidScene("volume.size", "only builtin volumes take a size");
     source.file = r.string("file", "");
-    const std::filesystem::path path = resolve(base_dir, source.file);
-    if (!std::filesystem::exists(path)) throw IoError(path.string(), "volume file not found (volume.file)");
-    volume = read_volume(path);
+    resolved = resolve(base_dir, source.file);
   } else {
     source.builtin = r.string("builtin", "");
     source.size = ivec3(kDefaultProceduralSize);
@@ -123,38 +122,28 @@ void read_volume_section(const json& j, const std::filesystem::path& base_dir, S
         source.size[a] = int(n);
       }
     }
-    try {
-      volume = make_procedural_volume(source.builtin, source.size);
-    } catch (const InvalidArgument& e) {
-      throw InvalidScene("volume." + e.name(), e.what());
-    }
   }
-  if (r.has("spacing")) {
-    source.spacing = r.vector3("spacing", vec3(1.0f));
-    try {
-      volume->set_spacing(*source.spacing);
-    } catch (const InvalidArgument& e) {
-      throw InvalidScene("volume.spacing", e.what());
-    }
-    if (!r.has("origin")) volume->center_at_origin();
-  }
-  if (r.has("origin")) {
-    source.origin = r.vector3("origin", vec3(0.0f));
-    volume->set_origin(*source.origin);
-  }
+  if (r.has("spacing")) source.spacing = r.vector3("spacing", vec3(1.0f));
+  if (r.has("origin")) source.origin = r.vector3("origin", vec3(0.0f));
   const int time_step = r.integer("time_step", 0);
+  std::shared_ptr<const Volume> volume =
+      options.load_volume ? options.load_volume(source, resolved) : load_scene_volume(source, resolved);
+  if (!volume) throw InvalidScene("volume", "the volume could not be loaded");
   scene.set_volume(std::move(volume), time_step);
   scene.set_volume_source(std::move(source));
 }
 
 TransferFunction read_transfer_function(const json& j, const std::string& section,
-                                        const std::filesystem::path& base_dir) {
+                                        const std::filesystem::path& base_dir, const SceneParseOptions& options) {
   const ObjectReader r(j, section, {"points", "preset", "range", "unit_length", "density_scale"});
   TransferFunction tf;
   if (r.has("points") && r.has("preset")) throw InvalidScene(section, "give \"points\" or \"preset\", not both");
   if (r.has("preset")) {
     // A ParaView colour-map preset: {"file": "presets.json", "name": "Cool to Warm"} (name optional).
     const ObjectReader p(r.at("preset"), section + ".preset", {"file", "name"});
+    if (!options.allow_preset_files) {
+      throw InvalidScene(section + ".preset", "preset files are not read here; send the TF's points instead");
+    }
     if (!p.has("file")) throw InvalidScene(section + ".preset.file", "missing: the preset JSON file");
     tf = read_paraview_preset(resolve(base_dir, p.string("file", "")), p.string("name", ""));
   }
@@ -363,6 +352,36 @@ std::vector<vec4> read_clip_planes(const json& j) {
   return planes;
 }
 
+}  // namespace
+
+std::shared_ptr<const Volume> load_scene_volume(const VolumeSource& source, const std::filesystem::path& resolved_file) {
+  std::shared_ptr<Volume> volume;
+  if (!source.file.empty()) {
+    if (!std::filesystem::exists(resolved_file)) {
+      throw IoError(resolved_file.string(), "volume file not found (volume.file)");
+    }
+    volume = read_volume(resolved_file);
+  } else {
+    try {
+      volume = make_procedural_volume(source.builtin, source.size);
+    } catch (const InvalidArgument& e) {
+      throw InvalidScene("volume." + e.name(), e.what());
+    }
+  }
+  if (source.spacing) {
+    try {
+      volume->set_spacing(*source.spacing);
+    } catch (const InvalidArgument& e) {
+      throw InvalidScene("volume.spacing", e.what());
+    }
+    if (!source.origin) volume->center_at_origin();
+  }
+  if (source.origin) volume->set_origin(*source.origin);
+  return volume;
+}
+
+namespace {
+
 // The default light when a scene names none: white, directional, from the
 // upper left front of the default camera.
 std::vector<Light> default_lights() {
@@ -373,7 +392,7 @@ std::vector<Light> default_lights() {
 
 }  // namespace
 
-Scene parse_scene(std::string_view json_text, const std::filesystem::path& base_dir) {
+Scene parse_scene(std::string_view json_text, const std::filesystem::path& base_dir, const SceneParseOptions& options) {
   json j;
   try {
     j = json::parse(json_text);
@@ -385,13 +404,13 @@ Scene parse_scene(std::string_view json_text, const std::filesystem::path& base_
   if (r.integer("version", 1) != 1) throw InvalidScene("version", "only scene version 1 is supported");
   if (!r.has("volume")) throw InvalidScene("volume", "missing: a scene needs a volume (\"file\" or \"builtin\")");
   Scene scene;
-  read_volume_section(r.at("volume"), base_dir, scene);
+  read_volume_section(r.at("volume"), base_dir, options, scene);
   if (r.has("transfer_function")) {
-    scene.set_transfer_function(read_transfer_function(r.at("transfer_function"), "transfer_function", base_dir));
+    scene.set_transfer_function(read_transfer_function(r.at("transfer_function"), "transfer_function", base_dir, options));
   }
   if (r.has("shadow_transfer_function")) {
     scene.set_shadow_transfer_function(
-        read_transfer_function(r.at("shadow_transfer_function"), "shadow_transfer_function", base_dir));
+        read_transfer_function(r.at("shadow_transfer_function"), "shadow_transfer_function", base_dir, options));
   }
   const Box3 box = scene.volume().world_box();
   scene.set_camera(read_camera(r.has("camera") ? r.at("camera") : json::object(), box));
@@ -415,6 +434,17 @@ Scene load_scene(const std::filesystem::path& path) {
 namespace {
 
 json to_json(vec3 v) { return json::array({v.x, v.y, v.z}); }
+
+// The scene holds floats; written as doubles they would print as
+// 0.20000000298023224. Replace each by the double nearest to the float's
+// shortest decimal form, so files read back to the same floats and look tidy.
+void shorten_floats(json& j) {
+  if (j.is_number_float()) {
+    j = std::stod(fmt::format("{}", static_cast<float>(j.get<double>())));
+  } else if (j.is_structured()) {
+    for (json& child : j) shorten_floats(child);
+  }
+}
 
 json to_json(const TransferFunction& tf) {
   json points = json::array();
@@ -507,6 +537,7 @@ std::string write_scene_json(const Scene& scene) {
   for (const vec4& c4 : scene.clip_planes()) clips.push_back({c4.x, c4.y, c4.z, c4.w});
   j["clip_planes"] = clips;
   j["background"] = to_json(scene.background());
+  shorten_floats(j);
   return j.dump(2);
 }
 

@@ -6,6 +6,8 @@
 #include "penumbra/scene/scene.h"
 
 #include <filesystem>
+#include <functional>
+#include <memory>
 #include <string>
 #include <string_view>
 
@@ -15,9 +17,24 @@ namespace penumbra {
 // file, InvalidScene for bad content.
 Scene load_scene(const std::filesystem::path& path);
 
-// Parses scene JSON text; `base_dir` resolves relative paths and `origin`
-// names the text in error messages.
-Scene parse_scene(std::string_view json_text, const std::filesystem::path& base_dir);
+struct SceneParseOptions {
+  // Loads the volume a scene names: `source` as written (file or builtin,
+  // spacing/origin overrides to apply) and, for files, the path resolved
+  // against the scene's folder. Empty: load_scene_volume. A server passes
+  // its own to check paths and share loaded volumes between sessions.
+  std::function<std::shared_ptr<const Volume>(const VolumeSource& source, const std::filesystem::path& resolved_file)>
+      load_volume;
+  // Whether `transfer_function.preset` may name a file.
+  bool allow_preset_files = true;
+};
+
+// Parses scene JSON text; `base_dir` resolves relative paths.
+Scene parse_scene(std::string_view json_text, const std::filesystem::path& base_dir,
+                  const SceneParseOptions& options = {});
+
+// The default volume loader: reads the file (IoError when missing) or makes
+// the procedural volume, then applies the spacing/origin overrides.
+std::shared_ptr<const Volume> load_scene_volume(const VolumeSource& source, const std::filesystem::path& resolved_file);
 
 // Serialises a scene back to JSON v1 (volume by its VolumeSource).
 std::string write_scene_json(const Scene& scene);

@@ -1,5 +1,6 @@
 #include "penumbra/base/error.h"
 #include "penumbra/io/scene_json.h"
+#include "penumbra/volume/procedural.h"
 
 #include <gtest/gtest.h>
 
@@ -109,6 +110,9 @@ TEST(SceneJson, RoundTripsThroughWrite) {
   EXPECT_EQ(b.clip_planes(), a.clip_planes());
   EXPECT_EQ(b.planes()[0].point, a.planes()[0].point);
   EXPECT_EQ(b.background(), a.background());
+  // Floats are written in their shortest form, not as widened doubles.
+  EXPECT_NE(write_scene_json(a).find("0.1,"), std::string::npos);
+  EXPECT_EQ(write_scene_json(a).find("0.10000000149"), std::string::npos);
 }
 
 TEST(SceneJson, ErrorsNameTheKey) {
@@ -157,6 +161,31 @@ TEST(SceneJson, TransferFunctionsCanComeFromParaViewPresets) {
             "transfer_function.preset.file");
   EXPECT_EQ(error_key(R"({"volume": {"builtin": "spheres"}, "transfer_function": {"preset": {"file": "a"},
       "points": [[0, 1, 1, 1, 1]]}})"), "transfer_function");
+}
+
+TEST(SceneJson, CallersCanLoadVolumesThemselves) {
+  SceneParseOptions options;
+  int calls = 0;
+  auto shared = make_procedural_volume("spheres", ivec3(12));
+  options.load_volume = [&](const VolumeSource& source, const std::filesystem::path& resolved) {
+    ++calls;
+    EXPECT_EQ(source.file, "data/x.nrrd");
+    EXPECT_EQ(resolved, std::filesystem::path("/base/data/x.nrrd"));
+    return shared;
+  };
+  options.allow_preset_files = false;
+  const Scene s = parse_scene(R"({"volume": {"file": "data/x.nrrd"}})", "/base", options);
+  EXPECT_EQ(calls, 1);
+  EXPECT_EQ(s.volume_ptr(), shared);
+  EXPECT_EQ(s.volume_source().file, "data/x.nrrd");
+  EXPECT_FLOAT_EQ(s.camera().target.x, 0.0f);  // the default camera frames the loaded volume
+  try {
+    parse_scene(R"({"volume": {"file": "data/x.nrrd"}, "transfer_function": {"preset": {"file": "p.json"}}})", "/base",
+                options);
+    FAIL();
+  } catch (const InvalidScene& e) {
+    EXPECT_EQ(e.key(), "transfer_function.preset");
+  }
 }
 
 TEST(SceneJson, MissingFilesAreIoErrorsNamingThePath) {
