@@ -8,6 +8,7 @@
 // plus samples_per_frame and samples_per_s (volume samples of viewing rays).
 #include "cli_common.h"
 #include "commands.h"
+#include "timing.h"
 
 #include "penumbra/base/error.h"
 #include "penumbra/base/parallel.h"
@@ -29,42 +30,6 @@ struct BenchOptions {
   int frames = 10;
 };
 
-using Clock = std::chrono::steady_clock;
-
-double elapsed_ms(Clock::time_point since) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - since).count();
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-// Rotates a vector about the world z axis (directional lights) or a position
-// about the volume centre (point lights) by `degrees`.
-std::vector<Light> moved_lights(const std::vector<Light>& lights, vec3 center, float degrees) {
-  const float a = glm::radians(degrees);
-  const mat3 rot(std::cos(a), std::sin(a), 0.0f, -std::sin(a), std::cos(a), 0.0f, 0.0f, 0.0f, 1.0f);
-  std::vector<Light> out = lights;
-  for (Light& l : out) {
-    l.direction = rot * l.direction;
-    l.position = center + rot * (l.position - center);
-  }
-  return out;
-}
-
-// The same TF with a slightly different opacity, so the change is real.
-TransferFunction nudged_tf(const TransferFunction& tf, int round) {
-  std::vector<TransferFunctionPoint> points = tf.points();
-  for (TransferFunctionPoint& p : points) p.alpha = std::min(1.0f, p.alpha * (round % 2 ? 1.01f : 1.0f / 1.01f));
-  TransferFunction out(points);
-  out.set_range(tf.range());
-  out.set_unit_length(tf.unit_length());
-  out.set_density_scale(tf.density_scale());
-  return out;
-}
-
 void bench_technique(Scene scene, const TechniqueInfo& info, const BenchOptions& options) {
   const ParameterValues params = resolve_parameters(scene, info, options.scene.params, options.techniques.size() < 2);
   auto technique = info.create();
@@ -72,18 +37,7 @@ void bench_technique(Scene scene, const TechniqueInfo& info, const BenchOptions&
   technique->prepare(scene, params);
   technique->render(scene, image);  // warm-up
 
-  constexpr int kRounds = 3;
-  std::vector<double> tf_ms, light_ms;
-  for (int round = 0; round < kRounds; ++round) {
-    scene.set_transfer_function(nudged_tf(scene.transfer_function(), round));
-    auto t0 = Clock::now();
-    technique->prepare(scene, params);
-    tf_ms.push_back(elapsed_ms(t0));
-    scene.set_lights(moved_lights(scene.lights(), scene.volume().world_box().center(), 2.0f));
-    t0 = Clock::now();
-    technique->prepare(scene, params);
-    light_ms.push_back(elapsed_ms(t0));
-  }
+  const ChangeTimings changes = time_scene_changes(*technique, scene, params);
 
   std::vector<double> frame_ms;
   RenderStats stats;
@@ -105,8 +59,8 @@ void bench_technique(Scene scene, const TechniqueInfo& info, const BenchOptions&
       "{{\"technique\": \"{}\", \"volume\": \"{}\", \"dims\": [{}, {}, {}], \"image\": [{}, {}], "
       "\"tf_change_ms\": {:.3f}, \"light_move_ms\": {:.3f}, \"frame_ms_median\": {:.3f}, \"frame_ms_min\": {:.3f}, "
       "\"aux_bytes\": {}, \"threads\": {}, \"samples_per_frame\": {}, \"samples_per_s\": {:.4g}}}\n",
-      info.name, volume, d.x, d.y, d.z, scene.render().width, scene.render().height, median(tf_ms),
-      median(light_ms), median(frame_ms), *std::min_element(frame_ms.begin(), frame_ms.end()),
+      info.name, volume, d.x, d.y, d.z, scene.render().width, scene.render().height, changes.tf_change_ms,
+      changes.light_move_ms, median(frame_ms), *std::min_element(frame_ms.begin(), frame_ms.end()),
       technique->aux_bytes(), thread_count(), stats.samples / std::uint64_t(options.frames),
       total_ms > 0.0 ? double(stats.samples) / (total_ms * 1e-3) : 0.0);
   std::fflush(stdout);

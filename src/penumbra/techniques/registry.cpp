@@ -3,6 +3,7 @@
 #include "penumbra/base/error.h"
 #include "penumbra/techniques/emission_absorption/emission_absorption.h"
 #include "penumbra/techniques/phong/phong.h"
+#include "penumbra/techniques/pathtrace/pathtrace.h"
 #include "penumbra/techniques/shadow_rays/shadow_rays.h"
 
 #include <fmt/format.h>
@@ -15,6 +16,7 @@ const std::vector<TechniqueInfo>& technique_registry() {
       emission_absorption_info(),
       phong_info(),
       shadow_rays_info(),
+      pathtrace_info(),
   };
   return registry;
 }

@@ -1,0 +1,227 @@
+#include "penumbra/techniques/pathtrace/pathtrace.h"
+
+#include "penumbra/base/memory_budget.h"
+#include "penumbra/base/parallel.h"
+#include "penumbra/render/scene_resources.h"
+#include "penumbra/techniques/pathtrace/path_kernel.h"
+#include "penumbra/techniques/pathtrace/progress_bar.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace penumbra {
+
+double lightness_standard_error(double mean_luminance, double luminance_standard_error) {
+  const double y = std::clamp(mean_luminance, 0.0, 1.0);
+  constexpr double kLinearBelow = 216.0 / 24389.0;  // CIE: L* is linear below this Y
+  const double slope = y > kLinearBelow ? (116.0 / 3.0) * std::pow(y, -2.0 / 3.0) : 24389.0 / 27.0;
+  return slope * luminance_standard_error;
+}
+
+namespace {
+
+// Running sums of one pixel's paths (double: a pixel may take millions).
+struct PixelAccumulator {
+  dvec3 sum{0.0};
+  dvec3 sum_squares{0.0};
+  double luminance_squares = 0.0;
+  std::uint32_t paths = 0;
+  std::uint32_t hits = 0;
+  bool done = false;
+
+  void add(const PathSample& s) {
+    const dvec3 r(s.radiance);
+    sum += r;
+    sum_squares += r * r;
+    const double y = luminance(s.radiance);
+    luminance_squares += y * y;
+    ++paths;
+    hits += s.hit ? 1u : 0u;
+  }
+  dvec3 mean() const { return paths ? sum / double(paths) : dvec3(0.0); }
+  // Unbiased sample variance of the mean: (sum x^2 - (sum x)^2 / n) / (n (n - 1)).
+  double variance_of_mean(double sum_x, double sum_x2) const {
+    if (paths < 2) return std::numeric_limits<double>::infinity();
+    const double n = double(paths);
+    return std::max(0.0, sum_x2 - sum_x * sum_x / n) / (n * (n - 1.0));
+  }
+  dvec3 standard_error() const {
+    return dvec3(std::sqrt(variance_of_mean(sum.x, sum_squares.x)), std::sqrt(variance_of_mean(sum.y, sum_squares.y)),
+                 std::sqrt(variance_of_mean(sum.z, sum_squares.z)));
+  }
+  double lightness_error() const {
+    const double y = luminance(vec3(sum));
+    const double n = std::max(1.0, double(paths));
+    return lightness_standard_error(y / n, std::sqrt(variance_of_mean(y, luminance_squares)));
+  }
+};
+
+class PathTrace final : public Technique {
+ public:
+  void prepare(const Scene& scene, const ParameterValues& params) override {
+    resources_.update(scene);
+    settings_.mode = params.choice("mode") == "single" ? ScatteringMode::Single : ScatteringMode::Multiple;
+    settings_.max_bounces = params.integer("max_bounces");
+    spp_ = params.integer("spp");
+    min_spp_ = params.integer("min_spp");
+    target_error_ = params.number("target_error");
+    seed_ = std::uint32_t(params.integer("seed"));
+    antialias_ = params.flag("antialias");
+    progress_ = params.flag("progress");
+  }
+
+  void render(const Scene& scene, Image& image, RenderStats* stats) override {
+    const RenderView view = resources_.view(scene);
+    const RenderView shadows = resources_.shadow_view(scene);
+    const int width = view.width;
+    const int height = view.height;
+    const std::uint64_t pixels = std::uint64_t(width) * std::uint64_t(height);
+    check_memory_budget("pathtrace accumulation buffers",
+                        checked_product({pixels, sizeof(PixelAccumulator) + sizeof(vec4)}));
+    accumulators_.assign(pixels, PixelAccumulator{});
+    estimate_ = PathTraceEstimate{};
+
+    ProgressBar bar("pathtrace", progress_);
+    const double budget = double(pixels) * double(spp_);
+    std::atomic<std::uint64_t> lookups{0};
+    std::atomic<std::uint64_t> paths{0};
+    std::uint64_t skipped = 0;  // paths that pixels stopped early will not take
+    with_sampler(view.volume, [&](const auto& sampler) {
+      using Kernel = PathKernel<std::decay_t<decltype(sampler)>>;
+      const Kernel kernel{&view, &shadows, sampler, settings_};
+      int taken = 0;  // paths every active pixel has taken
+      while (taken < spp_) {
+        const int target = taken == 0 ? std::min(spp_, min_spp_) : std::min(spp_, 2 * taken);
+        parallel_for_tiles(width, height, 16, [&](int x0, int y0, int x1, int y1) {
+          std::uint64_t tile_lookups = 0;
+          std::uint64_t tile_paths = 0;
+          for (int y = y0; y < y1; ++y) {
+            for (int x = x0; x < x1; ++x) {
+              const std::uint64_t index = std::uint64_t(y) * std::uint64_t(width) + std::uint64_t(x);
+              PixelAccumulator& pixel = accumulators_[index];
+              if (pixel.done) continue;
+              for (int s = taken; s < target; ++s) {
+                Pcg32 rng = path_rng(seed_, std::uint32_t(index), std::uint32_t(s));
+                const float dx = antialias_ ? rng.next_float() : 0.5f;
+                const float dy = antialias_ ? rng.next_float() : 0.5f;
+                const Ray ray = view.camera.pixel_ray(float(x) + dx, float(y) + dy, width, height);
+                pixel.add(kernel.trace(ray, rng, tile_lookups));
+              }
+              tile_paths += std::uint64_t(target - taken);
+            }
+          }
+          lookups.fetch_add(tile_lookups, std::memory_order_relaxed);
+          const std::uint64_t done = paths.fetch_add(tile_paths, std::memory_order_relaxed) + tile_paths;
+          bar.update((double(done) + double(skipped)) / budget);
+        });
+        taken = target;
+        ++estimate_.passes;
+        if (target_error_ > 0.0 && taken >= min_spp_ && taken < spp_) {
+          const std::uint64_t stopped = stop_converged_pixels(width, height);
+          skipped += stopped * std::uint64_t(spp_ - taken);
+          if (std::all_of(accumulators_.begin(), accumulators_.end(), [](const auto& p) { return p.done; })) break;
+        }
+      }
+      return 0;
+    });
+
+    if (image.width() != width || image.height() != height) image = Image(width, height);
+    estimate_.standard_error = Image(width, height);
+    for (int y = 0; y < height; ++y) {
+      for (int x = 0; x < width; ++x) {
+        const PixelAccumulator& pixel = accumulators_[std::size_t(y) * std::size_t(width) + std::size_t(x)];
+        const float n = float(std::max(1u, pixel.paths));
+        image.at(x, y) = vec4(vec3(pixel.mean()), float(pixel.hits) / n);
+        estimate_.standard_error.at(x, y) = vec4(vec3(pixel.standard_error()), float(pixel.paths));
+      }
+    }
+    estimate_.paths = paths.load();
+    if (stats) {
+      stats->samples += lookups.load();
+      stats->rays += estimate_.paths;
+    }
+  }
+
+  // Marks the pixels whose lightness error, and that of their 8 neighbours,
+  // is below the target; returns how many it marked. The neighbours guard
+  // against false convergence: a pixel whose few paths happened to agree
+  // (all of them blocked at the edge of a shadow, say) reports no variance,
+  // but its neighbours across the edge do.
+  std::uint64_t stop_converged_pixels(int width, int height) {
+    std::vector<double> error(accumulators_.size());
+    for (std::size_t i = 0; i < error.size(); ++i) error[i] = accumulators_[i].lightness_error();
+    std::uint64_t stopped = 0;
+    for (int y = 0; y < height; ++y) {
+      for (int x = 0; x < width; ++x) {
+        PixelAccumulator& pixel = accumulators_[std::size_t(y) * std::size_t(width) + std::size_t(x)];
+        if (pixel.done) continue;
+        double worst = 0.0;
+        for (int ny = std::max(0, y - 1); ny <= std::min(height - 1, y + 1); ++ny) {
+          for (int nx = std::max(0, x - 1); nx <= std::min(width - 1, x + 1); ++nx) {
+            worst = std::max(worst, error[std::size_t(ny) * std::size_t(width) + std::size_t(nx)]);
+          }
+        }
+        if (worst <= target_error_) {
+          pixel.done = true;
+          ++stopped;
+        }
+      }
+    }
+    return stopped;
+  }
+
+  std::uint64_t aux_bytes() const override {
+    return accumulators_.size() * sizeof(PixelAccumulator) + estimate_.standard_error.pixel_count() * sizeof(vec4);
+  }
+
+  const PathTraceEstimate* estimate() const { return estimate_.standard_error.empty() ? nullptr : &estimate_; }
+
+ private:
+  SceneResources resources_;
+  PathSettings settings_;
+  int spp_ = 1;
+  int min_spp_ = 1;
+  double target_error_ = 0.0;
+  std::uint32_t seed_ = 0;
+  bool antialias_ = false;
+  bool progress_ = true;
+  std::vector<PixelAccumulator> accumulators_;
+  PathTraceEstimate estimate_;
+};
+
+}  // namespace
+
+const PathTraceEstimate* pathtrace_estimate(const Technique& technique) {
+  const auto* p = dynamic_cast<const PathTrace*>(&technique);
+  return p ? p->estimate() : nullptr;
+}
+
+TechniqueInfo pathtrace_info() {
+  return TechniqueInfo{
+      "pathtrace",
+      "Monte Carlo reference: delta/ratio tracking path tracing with next-event estimation, single or multiple "
+      "scattering",
+      ParameterTable{{
+          ParameterSpec::choice("mode", "single", {"single", "multiple"},
+                                "single: one scattering event lit by transmittance (converges to shadow-rays); "
+                                "multiple: full multiple scattering"),
+          ParameterSpec::integer("spp", 64, 1, 1 << 20, "paths per pixel (the most a pixel takes)"),
+          ParameterSpec::real("target_error", 0.0, 0.0, 100.0,
+                              "stop a pixel once the standard error of its lightness (and its 8 neighbours') is "
+                              "below this many CIE L* units (0 = always take spp)"),
+          ParameterSpec::integer("min_spp", 32, 2, 1 << 20, "paths every pixel takes before target_error may stop it"),
+          ParameterSpec::integer("max_bounces", 64, 1, 100000,
+                                 "most scattering events per path in multiple mode (Russian roulette from 3 on)"),
+          ParameterSpec::integer("seed", 0, 0, 2147483647, "random seed; images are reproducible for a given seed"),
+          ParameterSpec::flag("antialias", false,
+                              "random positions inside each pixel instead of its centre (which every other "
+                              "technique samples)"),
+          ParameterSpec::flag("progress", true, "progress bar on stderr while rendering, when stderr is a terminal"),
+      }},
+      [] { return std::make_unique<PathTrace>(); }};
+}
+
+}  // namespace penumbra

@@ -1,0 +1,64 @@
+#pragma once
+// pathtrace: the Monte Carlo reference every technique is measured against
+// (DESIGN.md 1). Unbiased volumetric path tracing on the same sigma_t,
+// albedo (material.albedo * TF colour) and Henyey-Greenstein phase function
+// as the other techniques: delta tracking for free flights and ratio
+// tracking for transmittance (Woodcock et al. 1965; Novak et al. 2014; see
+// Novak et al., "Monte Carlo Methods for Volumetric Light Transport
+// Simulation", EG STAR 2018), both against the per-macrocell majorants so
+// empty space costs nothing; next-event estimation to every light, area and
+// environment lights sampled (scene/light_sampling.h); opaque Lambertian
+// planes. Light units as in DESIGN-NOTES.md, so `single` mode converges to
+// shadow-rays; `ambient` is ignored (compare with scenes that set it to 0).
+//
+// Parameters
+//   mode          single (default): one scattering event lit by transmittance
+//                 only, the model every other technique approximates, so
+//                 comparisons measure their error by default; multiple: full
+//                 multiple scattering (the physically based target)
+//   spp           paths per pixel (the most a pixel takes)
+//   target_error  stop a pixel once the standard error of its lightness, and
+//                 that of its 8 neighbours, is below this many CIE L* units
+//                 (0 = always take spp)
+//   min_spp       paths every pixel takes before target_error may stop it
+//   max_bounces   scattering events per path in multiple mode (Russian
+//                 roulette ends most paths far earlier)
+//   seed          the random streams: sample s of pixel p uses stream
+//                 (seed, p, s), so images are reproducible on any thread count
+//   antialias     random positions inside each pixel instead of its centre
+//                 (every other technique samples the centre)
+//   progress      progress bar on stderr when it is a terminal
+// Passes
+//   prepare: nothing of its own (the shared macrocell majorants and TF table)
+//   render:  progressive passes of min_spp, then doubling sample counts; after
+//            each pass, pixels whose neighbourhood's error is below
+//            target_error stop. Keeps a per-pixel variance estimate
+//            (pathtrace_estimate()).
+#include "penumbra/render/technique.h"
+
+#include <cstdint>
+
+namespace penumbra {
+
+TechniqueInfo pathtrace_info();
+
+// What the last render() of a pathtrace technique estimated besides the image.
+struct PathTraceEstimate {
+  // Per pixel: rgb = standard error of the mean radiance per channel (+inf
+  // where a pixel has fewer than 2 paths); alpha = the number of paths.
+  Image standard_error;
+  std::uint64_t paths = 0;
+  int passes = 0;
+};
+
+// The estimate of `technique`'s last render; nullptr when it is not a
+// pathtrace technique or has not rendered yet.
+const PathTraceEstimate* pathtrace_estimate(const Technique& technique);
+
+// Standard error in CIE L* units of a pixel's lightness, from its mean
+// luminance Y (linear, display white 1) and the standard error of Y:
+// sigma_L = dL*/dY * sigma_Y with L* = 116 Y^(1/3) - 16 (903.3 Y near black);
+// Y is clamped to [0, 1] as a display clamps it.
+double lightness_standard_error(double mean_luminance, double luminance_standard_error);
+
+}  // namespace penumbra

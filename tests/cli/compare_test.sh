@@ -1,0 +1,69 @@
+#!/usr/bin/env bash
+# End-to-end checks of `penumbra compare`: the files it writes, the keys of
+# report.json, and clear errors for unknown techniques and parameters.
+# Usage: compare_test.sh PENUMBRA_BINARY SOURCE_DIR WORK_DIR
+set -u
+bin=$1
+src=$2
+work=$3
+rm -rf "$work" && mkdir -p "$work"
+failures=0
+
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+
+# expect CODE NEEDLE -- command...: exit code CODE and NEEDLE in stdout+stderr.
+expect() {
+  local code=$1 needle=$2
+  shift 3
+  local out rc
+  out=$("$@" 2>&1)
+  rc=$?
+  [ "$rc" -eq "$code" ] || fail "'$*' exited $rc, expected $code: $out"
+  if [ -n "$needle" ] && ! grep -qF -- "$needle" <<<"$out"; then fail "'$*' output lacks '$needle': $out"; fi
+}
+
+scene=$src/scenes/shell-directional.json
+small=(--size 24x24 --frames 1 --param pathtrace.spp=8 --param pathtrace.min_spp=8 --param pathtrace.target_error=0)
+
+# Two techniques against a small pathtrace reference.
+expect 0 "report.md" -- "$bin" compare "$scene" --techniques shadow-rays,phong "${small[@]}" -o "$work/out"
+for f in reference.png reference.exr reference-stderr.exr reference-noise.png grid.png report.json report.md \
+         shadow-rays.png shadow-rays.exr shadow-rays-de.png shadow-rays-luminance.png \
+         phong.png phong.exr phong-de.png; do
+  [ -s "$work/out/$f" ] || fail "compare did not write $f"
+done
+head -c 8 "$work/out/grid.png" | od -An -c | grep -q "P   N   G" || fail "grid.png is not a PNG"
+for key in '"reference"' '"noise_de_mean"' '"technique": "shadow-rays"' '"technique": "phong"' '"rmse"' '"psnr"' \
+           '"ssim"' '"mean_de"' '"p99_de"' '"tf_change_ms"' '"light_move_ms"' '"frame_ms"' '"aux_bytes"'; do
+  grep -qF "$key" "$work/out/report.json" || fail "report.json lacks $key"
+done
+python3 -c "import json, sys; json.load(open(sys.argv[1]))" "$work/out/report.json" 2>/dev/null ||
+  { command -v python3 >/dev/null && fail "report.json is not valid JSON"; }
+grep -qF "| shadow-rays |" "$work/out/report.md" || fail "report.md lacks the shadow-rays row"
+# No progress bar when stderr is not a terminal: no carriage returns.
+out=$("$bin" compare "$scene" --techniques emission-absorption "${small[@]}" -o "$work/quiet" 2>&1)
+grep -q $'\r' <<<"$out" && fail "progress bar drawn although stderr is not a terminal"
+
+# Against a stored reference image (the one just written), and the same
+# technique as reference: identical images give dE 0 and PSNR null (infinite).
+expect 0 "mean dE 0.00" -- "$bin" compare "$scene" --techniques shadow-rays --size 24x24 --frames 1 \
+  --reference-image "$work/out/shadow-rays.exr" -o "$work/stored"
+grep -qF '"psnr": null' "$work/stored/report.json" || fail "identical images should give psnr null"
+expect 2 "--reference-image" -- "$bin" compare "$scene" --techniques phong --size 16x16 \
+  --reference-image "$work/out/reference.exr" -o "$work/x"
+
+# Bad input: exit code 2 and one line naming what is wrong.
+expect 2 "unknown technique 'teapot'" -- "$bin" compare "$scene" --techniques shadow-rays,teapot -o "$work/x"
+expect 2 "known: " -- "$bin" compare "$scene" --techniques teapot -o "$work/x"
+expect 2 "unknown technique 'kettle'" -- "$bin" compare "$scene" --techniques phong --reference kettle -o "$work/x"
+expect 2 "filter_voxels" -- "$bin" compare "$scene" --techniques phong --param filter_voxels=3 -o "$work/x"
+expect 2 "cssm-like" -- "$bin" compare "$scene" --techniques phong --param cssm-like.k=3 -o "$work/x"
+expect 2 "spp" -- "$bin" compare "$scene" --techniques phong --param pathtrace.spp=0 -o "$work/x"
+expect 2 "" -- "$bin" compare "$scene" --techniques phong
+[ -e "$work/x" ] && fail "a failed compare left an output folder"
+
+if [ "$failures" -gt 0 ]; then
+  echo "$failures compare check(s) failed"
+  exit 1
+fi
+echo "all compare checks passed"
