@@ -21,6 +21,7 @@ demo: build
 	@$(BUILD)/penumbra render --demo -o $(BUILD)/demo.png
 
 test: build
+	@scripts/install-deps.sh --web-tests
 	@ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
 
 bench: configure

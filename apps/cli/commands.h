@@ -10,5 +10,6 @@ void add_info_command(CLI::App& app);
 void add_techniques_command(CLI::App& app);
 void add_bench_command(CLI::App& app);
 void add_compare_command(CLI::App& app);
+void add_serve_command(CLI::App& app);
 
 }  // namespace penumbra::cli

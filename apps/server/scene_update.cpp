@@ -1,0 +1,102 @@
+#include "server/scene_update.h"
+
+#include "penumbra/base/error.h"
+#include "penumbra/io/scene_json.h"
+#include "penumbra/techniques/registry.h"
+#include "server/http_error.h"
+
+#include <fmt/format.h>
+
+namespace penumbra::server {
+namespace {
+
+using nlohmann::json;
+
+void check_builtin_size(const json& volume, const SceneLimits& limits) {
+  const auto size = volume.find("size");
+  if (size == volume.end() || !size->is_array()) return;  // parse_scene reports malformed sizes
+  for (const json& n : *size) {
+    if (n.is_number_integer() && n.get<std::int64_t>() > limits.max_builtin_size) {
+      throw HttpError(413, "volume.size",
+                      fmt::format("this server makes builtin volumes of at most {} voxels per axis",
+                                  limits.max_builtin_size));
+    }
+  }
+}
+
+void check_technique(const Scene& scene) {
+  const TechniqueInfo* info = nullptr;
+  try {
+    info = &find_technique(scene.render().technique);
+  } catch (const InvalidArgument& e) {
+    throw InvalidScene("render.technique", e.what());
+  }
+  try {
+    ParameterValues(info->parameters).apply(scene.render().params, true);
+  } catch (const InvalidArgument& e) {
+    throw InvalidScene("render.params." + e.name(), e.what());
+  }
+}
+
+}  // namespace
+
+ClientScene parse_client_scene(const json& scene_json, const DataDirectory& data, VolumeCache& cache,
+                               const SceneLimits& limits) {
+  if (!scene_json.is_object()) throw InvalidScene("(root)", "expected a scene object");
+  ClientScene out;
+  out.json = scene_json;
+  if (const auto volume = scene_json.find("volume"); volume != scene_json.end() && volume->is_object()) {
+    check_builtin_size(*volume, limits);
+    json section = *volume;
+    section.erase("time_step");  // frames of one series share the cached volume
+    out.volume_key = section.dump();
+  }
+  SceneParseOptions options;
+  // A client could name any file on the server with a preset; the viewer
+  // imports presets through POST /api/presets instead.
+  options.allow_preset_files = false;
+  options.load_volume = [&](const VolumeSource& source, const std::filesystem::path&) {
+    return cache
+        .get(out.volume_key,
+             [&] {
+               std::filesystem::path path;
+               if (!source.file.empty()) path = data.resolve_volume(source.file, "volume.file");
+               return LoadedVolume{load_scene_volume(source, path), source};
+             })
+        .volume;
+  };
+  out.scene = parse_scene(scene_json.dump(), data.root(), options);
+  check_technique(out.scene);
+  return out;
+}
+
+bool SceneState::apply(const ClientScene& next) {
+  const bool new_volume = next.volume_key != volume_key_;
+  auto changed = [&](const char* key) {
+    return new_volume || json_.value(key, json()).dump() != next.json.value(key, json()).dump();
+  };
+  const Scene& s = next.scene;
+  bool data_changed = false;
+  if (new_volume) {
+    scene_.set_volume(s.volume_ptr(), s.time_step());
+    scene_.set_volume_source(s.volume_source());
+    data_changed = true;
+  } else if (scene_.time_step() != s.time_step()) {
+    scene_.set_time_step(s.time_step());
+    data_changed = true;
+  }
+  if (changed("transfer_function")) scene_.set_transfer_function(s.transfer_function());
+  if (changed("shadow_transfer_function")) scene_.set_shadow_transfer_function(s.shadow_transfer_function());
+  if (changed("camera")) scene_.set_camera(s.camera());
+  if (changed("lights")) scene_.set_lights(s.lights());
+  if (changed("material")) scene_.set_material(s.material());
+  if (changed("background")) scene_.set_background(s.background());
+  if (changed("planes")) scene_.set_planes(s.planes());
+  if (changed("clip_planes")) scene_.set_clip_planes(s.clip_planes());
+  if (changed("render")) scene_.set_render(s.render());
+  json_ = next.json;
+  volume_key_ = next.volume_key;
+  return data_changed;
+}
+
+}  // namespace penumbra::server

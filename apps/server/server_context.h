@@ -1,0 +1,31 @@
+#pragma once
+// Everything the request handlers share. Members are declared so that the
+// render queue is destroyed first: its jobs finish before the sessions and
+// volumes they use go away.
+#include "server/data_directory.h"
+#include "server/http_server.h"
+#include "server/render_queue.h"
+#include "server/session_store.h"
+#include "server/volume_cache.h"
+
+namespace penumbra::server {
+
+struct ServerContext {
+  explicit ServerContext(ServerOptions opts)
+      : options(std::move(opts)),
+        data(options.data_dir),
+        sessions(options.max_sessions, options.session_idle_timeout),
+        queue(options.render_workers, options.max_waiting_renders) {}
+
+  SessionContext session_context() {
+    return SessionContext{&data, &cache, SceneLimits{options.max_builtin_size}};
+  }
+
+  ServerOptions options;
+  DataDirectory data;
+  VolumeCache cache;
+  SessionStore sessions;
+  RenderQueue queue;
+};
+
+}  // namespace penumbra::server
