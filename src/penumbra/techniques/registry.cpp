@@ -5,6 +5,9 @@
 #include "penumbra/techniques/phong/phong.h"
 #include "penumbra/techniques/pathtrace/pathtrace.h"
 #include "penumbra/techniques/shadow_rays/shadow_rays.h"
+#include "penumbra/techniques/shadow_map/shadow_map.h"
+#include "penumbra/techniques/deep_shadow_map/deep_shadow_map.h"
+#include "penumbra/techniques/cssm/cssm.h"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -17,6 +20,9 @@ const std::vector<TechniqueInfo>& technique_registry() {
       phong_info(),
       shadow_rays_info(),
       pathtrace_info(),
+      shadow_map_info(),
+      deep_shadow_map_info(),
+      cssm_info(),
   };
   return registry;
 }

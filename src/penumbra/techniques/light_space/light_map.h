@@ -1,0 +1,75 @@
+#pragma once
+// A light-space map: a fixed number of floats per texel over every face of a
+// LightProjection (1 for a shadow map, 3 for a CSSM, 4 per node for a deep
+// shadow map). LightMap owns the texels; LightMapView is the plain struct the
+// query kernels read.
+#include "penumbra/base/parallel.h"
+#include "penumbra/techniques/light_space/light_projection.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace penumbra {
+
+struct LightMapView {
+  LightProjection projection;
+  const float* texels = nullptr;
+  int values_per_texel = 0;
+
+  // The values of texel (x, y) of `face`, or nullptr outside a single-face
+  // map (no volume lies toward the light there: lit). Cube maps clamp to the
+  // face's edge, so filters near a cube edge reuse the border texels.
+  PENUMBRA_HD const float* texel(int face, int x, int y) const {
+    const int n = projection.resolution;
+    if (projection.face_count == 6) {
+      x = x < 0 ? 0 : (x >= n ? n - 1 : x);
+      y = y < 0 ? 0 : (y >= n ? n - 1 : y);
+    } else if (x < 0 || y < 0 || x >= n || y >= n) {
+      return nullptr;
+    }
+    return texels + (projection.texels_per_face() * face + std::int64_t(y) * n + x) * values_per_texel;
+  }
+};
+
+class LightMap {
+ public:
+  LightMap() = default;
+  // Checks projection.texel_count() * values_per_texel floats against the
+  // memory budget (OutOfMemoryBudget naming `what`) and allocates them.
+  LightMap(const std::string& what, const LightProjection& projection, int values_per_texel);
+
+  const LightProjection& projection() const { return projection_; }
+  int values_per_texel() const { return values_per_texel_; }
+  float* texel(std::int64_t index) { return texels_.data() + index * values_per_texel_; }
+  const float* texel(std::int64_t index) const { return texels_.data() + index * values_per_texel_; }
+  std::uint64_t bytes() const { return texels_.size() * sizeof(float); }
+  LightMapView view() const { return LightMapView{projection_, texels_.data(), values_per_texel_}; }
+
+  // Fills every texel in parallel: fill(ray, texel_index, values) writes the
+  // texel's values_per_texel floats, given the light ray through its centre.
+  template <class Fill> void fill(const Fill& fill_texel) {
+    const LightProjection& p = projection_;
+    const int n = p.resolution;
+    parallel_for(
+        0, std::int64_t(p.face_count) * n,
+        [&](std::int64_t first_row, std::int64_t last_row) {
+          for (std::int64_t row = first_row; row < last_row; ++row) {
+            const int face = int(row / n);
+            const int y = int(row % n);
+            for (int x = 0; x < n; ++x) {
+              const std::int64_t index = row * n + x;
+              fill_texel(p.texel_ray(face, vec2(float(x) + 0.5f, float(y) + 0.5f)), index, texel(index));
+            }
+          }
+        },
+        4);
+  }
+
+ private:
+  LightProjection projection_;
+  int values_per_texel_ = 0;
+  std::vector<float> texels_;
+};
+
+}  // namespace penumbra
