@@ -8,6 +8,9 @@
 #include "penumbra/techniques/shadow_map/shadow_map.h"
 #include "penumbra/techniques/deep_shadow_map/deep_shadow_map.h"
 #include "penumbra/techniques/cssm/cssm.h"
+#include "penumbra/techniques/filtered_sat/filtered_sat.h"
+#include "penumbra/techniques/sat_ao/sat_ao.h"
+#include "penumbra/techniques/cone_shadows/cone_shadows.h"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -23,6 +26,9 @@ const std::vector<TechniqueInfo>& technique_registry() {
       shadow_map_info(),
       deep_shadow_map_info(),
       cssm_info(),
+      filtered_sat_info(),
+      sat_ao_info(),
+      cone_shadows_info(),
   };
   return registry;
 }

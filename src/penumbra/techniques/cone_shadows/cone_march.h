@@ -1,0 +1,53 @@
+#pragma once
+// The cone-shadows kernel: optical depth along a cone of growing cubes.
+#include "penumbra/base/ray.h"
+#include "penumbra/scene/light.h"
+#include "penumbra/techniques/sat_common/cartesian_table_grid.h"
+#include "penumbra/techniques/sat_common/summed_area_table.h"
+#include "penumbra/volume/volume_view.h"
+
+namespace penumbra {
+
+struct ConeMarch {
+  SummedAreaTableView table;
+  CartesianTableGrid grid;  // volume-aligned
+  Box3 box;                 // the volume box: the cone ends where its axis leaves it
+  float tan_half_angle = 0.0f;
+  float step = 1.0f;        // world units
+  float density_scale = 1.0f;
+
+  // Optical depth from p toward a light `distance` away along unit `to_light`.
+  PENUMBRA_HD float optical_depth(vec3 p, vec3 to_light, float distance) const {
+    const Interval chord = intersect_box(Ray{p, to_light}, box, 0.0f, distance);
+    if (chord.empty()) return 0.0f;
+    double depth = 0.0;
+    for (float t = 0.0f; t < chord.t1; t += step) {
+      const float length = glm::min(step, chord.t1 - t);
+      const float middle = t + 0.5f * length;
+      const float half = glm::max(middle * tan_half_angle, 0.5f * length);
+      const vec3 q = grid.grid_from_world(p + middle * to_light);
+      const float h = half / grid.cell;
+      const double cube = 8.0 * double(half) * half * half;
+      depth += table.box_sum(q - h, q + h) / cube * double(length);
+    }
+    return float(glm::max(depth, 0.0));
+  }
+  PENUMBRA_HD float transmittance(vec3 p, const LightSample& ls) const {
+    // A light that sends nothing here (an environment light) needs no cone.
+    if (ls.radiance == vec3(0.0f)) return 1.0f;
+    return exp_nonpositive(-density_scale * optical_depth(p, ls.to_light, ls.distance));
+  }
+  PENUMBRA_HD vec3 operator()(int, vec3 p, const LightSample& ls) const { return vec3(transmittance(p, ls)); }
+};
+
+// Per-light caches inside the volume box, the cone march elsewhere.
+struct CachedConeMarch {
+  ConeMarch direct;
+  const VolumeView* caches = nullptr;  // per light; data == nullptr: no cache
+  PENUMBRA_HD vec3 operator()(int light, vec3 p, const LightSample& ls) const {
+    if (caches[light].data && direct.box.contains(p)) return vec3(caches[light].sample(p));
+    return direct(light, p, ls);
+  }
+};
+
+}  // namespace penumbra

@@ -1,0 +1,109 @@
+// cone-shadows: an analytic slab, convergence to shadow-rays for a narrow
+// cone, softening with the angle, and what rebuilds when.
+#include "penumbra/analysis/image_metrics.h"
+#include "penumbra/techniques/cone_shadows/cone_march.h"
+#include "penumbra/techniques/registry.h"
+#include "penumbra/techniques/sat_common/volume_aligned_table.h"
+#include "test_scene.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+namespace penumbra {
+namespace {
+
+using testing::procedural_scene;
+using testing::render_with;
+
+// A cone of angle 0 is a column of cubes one step wide: inside a homogeneous
+// slab every cube is full, so the optical depth is sigma times the distance
+// to the box face, at any step (the last step is cut to the face).
+TEST(ConeShadows, NarrowConeThroughASlabIsAnalytic) {
+  Scene scene = procedural_scene("slab", ivec3(32), 8);
+  scene.set_transfer_function(testing::step_tf(0.0f, vec3(1.0f), 0.2f));
+  SceneResources resources;
+  const bool changed = resources.update(scene);
+  VolumeAlignedTable table("test");
+  table.update(scene, resources, changed, 1.0);
+  const float sigma = -std::log(0.8f);
+  const Box3 box = scene.volume().world_box();
+  for (const float step : {1.0f, 3.0f, 7.0f}) {
+    const ConeMarch cone{table.view(), table.grid(), box, 0.0f, step, 1.0f};
+    const vec3 p(2.0f, -3.0f, -4.25f);
+    EXPECT_NEAR(cone.optical_depth(p, vec3(0.0f, 0.0f, 1.0f), kInfinity), sigma * (box.upper.z - p.z), 1e-3f);
+    EXPECT_NEAR(cone.optical_depth(p, vec3(0.0f, 0.0f, 1.0f), 6.0f), sigma * 6.0f, 1e-3f) << "point light at 6";
+  }
+}
+
+// Spheres with a smoothly varying extinction over a floor.
+Scene spheres_over_floor(int size = 40) {
+  Scene scene = procedural_scene("spheres", ivec3(size), size);
+  TransferFunction tf({{0.0f, vec3(1.0f), 0.0f}, {0.1f, vec3(1.0f), 0.0f}, {1.0f, vec3(1.0f), 0.5f}});
+  tf.set_range(vec2(0.0f, 1.0f));
+  scene.set_transfer_function(tf);
+  Light light;
+  light.direction = glm::normalize(vec3(0.2f, 0.1f, -1.0f));
+  scene.set_lights({light});
+  Material m;
+  m.ambient = 0.0f;
+  scene.set_material(m);
+  scene.set_planes({Plane{vec3(0.0f, 0.0f, scene.volume().world_box().lower.z), vec3(0.0f, 0.0f, 1.0f), vec3(0.8f)}});
+  scene.set_camera(Camera::framing(scene.volume().world_box(), vec3(0.2f, -1.0f, 1.2f)));
+  return scene;
+}
+
+// With a narrow cone and short steps the cubes shrink to the shadow ray and
+// the image approaches shadow-rays (up to the table's cell-wise constant
+// extinction); widening the cone moves it away (softer shadows),
+// monotonically.
+TEST(ConeShadows, NarrowConesApproachShadowRaysAndWideOnesSoften) {
+  const Scene scene = spheres_over_floor();
+  const Image reference = render_with(scene, "shadow-rays");
+  double previous = 0.0;
+  for (const double angle : {0.0, 3.0, 8.0, 15.0}) {
+    const double error = rmse(render_with(scene, "cone-shadows", {{"cone_angle_deg", angle}, {"step_voxels", 1.0},
+                                                                  {"shadow_cache", false}}),
+                              reference);
+    std::printf("cone %.0f deg: rmse %.5f\n", angle, error);
+    if (angle == 0.0) {
+      EXPECT_LT(error, 0.01);
+    }
+    EXPECT_GT(error, previous);
+    previous = error;
+  }
+}
+
+TEST(ConeShadows, LightMovesRebuildOnlyTheCaches) {
+  Scene scene = spheres_over_floor(24);
+  const TechniqueInfo& info = find_technique("cone-shadows");
+  ParameterValues params(info.parameters);
+  auto t = info.create();
+  t->prepare(scene, params);
+  EXPECT_EQ(t->rebuilds(), 2u);  // table and caches
+  Light moved = scene.lights()[0];
+  moved.direction = glm::normalize(vec3(-0.3f, 0.2f, -1.0f));
+  scene.set_lights({moved});
+  t->prepare(scene, params);
+  EXPECT_EQ(t->rebuilds(), 3u);
+  params.set("shadow_cache", false);
+  scene.set_lights(scene.lights());
+  t->prepare(scene, params);
+  EXPECT_EQ(t->rebuilds(), 3u) << "without the cache lights are read per sample";
+  scene.set_transfer_function(scene.transfer_function());
+  t->prepare(scene, params);
+  EXPECT_EQ(t->rebuilds(), 4u);
+  // The cache at the data resolution interpolates the per-sample
+  // transmittance: a small difference only.
+  Image cached, direct;
+  t->render(scene, direct);
+  params.set("shadow_cache", true);
+  params.set("cache_resolution", 1.0);
+  t->prepare(scene, params);
+  t->render(scene, cached);
+  EXPECT_LT(rmse(cached, direct), 0.01);
+}
+
+}  // namespace
+}  // namespace penumbra

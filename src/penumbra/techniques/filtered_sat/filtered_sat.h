@@ -1,0 +1,40 @@
+#pragma once
+// filtered-sat: low-pass filtered volumetric shadows (M. Ament, F. Sadlo,
+// C. Dachsbacher, D. Weiskopf, "Low-Pass Filtered Volumetric Shadows", IEEE
+// TVCG 20(12), 2014). Single scattering in which the optical depth toward a
+// light is replaced by its mean over a patch facing the light (eq. 4), read
+// from summed-area tables aligned with the lights, so the cost of a shadow
+// does not depend on its softness and no shadow ray is marched:
+//   directional lights: a CSAT whose w axis points at the light; one table
+//     serves up to six orthodirectional lights (4.2.1, 4.2.2)
+//   point lights: a spherical SSAT about the light (4.2.3), inside or
+//     outside the volume
+//   box filter in constant time, Gaussian from sub-cuboids (4.3)
+//
+// Parameters
+//   filter_voxels         patch width in voxels of the smallest spacing (the
+//                         Gaussian gets the same variance as this box)
+//   kernel                box | gaussian
+//   sat_resolution        table cells per voxel along each axis (1 = the data
+//                         resolution; the paper's comparisons use 0.5)
+//   shadow_cache          store each light's transmittance on a grid
+//                         (Algorithm 1) instead of reading the tables per sample
+//   cache_resolution      that grid's size as a fraction of the data grid
+//   shadow_density_scale  multiplies the filtered optical depth (Fig. 7b)
+// Passes
+//   prepare: the tables, rebuilt when the data (or time step), the TF, the
+//            lights, the clip planes or sat_resolution change; then, with the
+//            cache, one transmittance grid per light, rebuilt also when the
+//            filter, kernel, density scale or cache resolution change (never
+//            the tables for those)
+//   render:  one ray-casting pass; per lit sample one cache read per light,
+//            or one table lookup (4 column sums for the box, 81 for the
+//            Gaussian); points outside the volume box (floors) always read
+//            the tables
+#include "penumbra/render/technique.h"
+
+namespace penumbra {
+
+TechniqueInfo filtered_sat_info();
+
+}  // namespace penumbra

@@ -1,0 +1,33 @@
+#pragma once
+// filtered-sat's light visibility for ScatteringLighting: the transmittance
+// exp(-density_scale * filtered optical depth), from the tables per sample
+// or from the per-light shadow cache inside the volume box (Algorithm 1).
+#include "penumbra/scene/light.h"
+#include "penumbra/techniques/filtered_sat/light_tables.h"
+#include "penumbra/volume/volume_view.h"
+
+namespace penumbra {
+
+struct FilteredVisibility {
+  const LightTableLookup* lights = nullptr;
+  ShadowFilter filter;
+
+  PENUMBRA_HD float transmittance(int light, vec3 p) const {
+    return exp_nonpositive(-filter.density_scale * filtered_optical_depth(lights[light], filter, p));
+  }
+  PENUMBRA_HD vec3 operator()(int light, vec3 p, const LightSample&) const { return vec3(transmittance(light, p)); }
+};
+
+// Cache lookups inside the volume box; the tables elsewhere (plane hits).
+struct CachedFilteredVisibility {
+  FilteredVisibility direct;
+  const VolumeView* caches = nullptr;  // per light; data == nullptr for lights without a cache
+  Box3 box;
+
+  PENUMBRA_HD vec3 operator()(int light, vec3 p, const LightSample& ls) const {
+    if (caches[light].data && box.contains(p)) return vec3(caches[light].sample(p));
+    return direct(light, p, ls);
+  }
+};
+
+}  // namespace penumbra

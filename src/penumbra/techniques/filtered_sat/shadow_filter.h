@@ -1,0 +1,32 @@
+#pragma once
+// The low-pass filter over the patch facing the light (Ament et al. 2014,
+// eq. 4): a square of half-width S in the plane orthogonal to the light,
+// split into taps x taps sub-patches with separable weights. The box kernel
+// (eq. 11) is one sub-patch of weight 1; the Gaussian (section 4.3, eq. 25)
+// is 8 x 8 sub-patches over +-3 sigma, each weighted by the Gaussian's mass
+// over it.
+//
+// "Comparable width": a box of width w and the Gaussian with the same
+// variance w^2 / 12 (sigma = w / sqrt(12), slightly less once the taps are
+// accounted for, see make_shadow_filter), so both blur equally in the
+// second-moment sense and agree at low frequencies (1 - (2 pi f sigma)^2 / 2
+// + ...).
+#include "penumbra/base/math.h"
+
+namespace penumbra {
+
+enum class FilterKernel { Box, Gaussian };
+
+struct ShadowFilter {
+  static constexpr int kMaxTaps = 8;
+  float half_width = 0.5f;  // S, world units
+  int taps = 1;             // sub-patches per axis
+  float weights[kMaxTaps] = {1.0f};  // per sub-patch along one axis, summing to 1
+  float density_scale = 1.0f;        // multiplies the filtered optical depth
+};
+
+// The filter for a box width (or, for the Gaussian, the box width of the same
+// variance) in world units.
+ShadowFilter make_shadow_filter(FilterKernel kernel, float width, float density_scale);
+
+}  // namespace penumbra

@@ -1,0 +1,39 @@
+#pragma once
+// The sat-ao kernel: occlusion from the mean extinction around a point.
+#include "penumbra/scene/light.h"
+#include "penumbra/techniques/sat_common/cartesian_table_grid.h"
+#include "penumbra/techniques/sat_common/summed_area_table.h"
+#include "penumbra/volume/volume_view.h"
+
+namespace penumbra {
+
+struct AmbientOcclusion {
+  SummedAreaTableView table;
+  CartesianTableGrid grid;  // volume-aligned
+  float radius = 1.0f;      // world units
+  float density_scale = 1.0f;
+
+  // exp(-sigma_mean R) with sigma_mean the mean extinction of the cube
+  // [p - R, p + R]^3 (outside the volume counts as empty).
+  PENUMBRA_HD float occlusion(vec3 p) const {
+    const vec3 q = grid.grid_from_world(p);
+    const float r = radius / grid.cell;
+    const double sum = table.box_sum(q - r, q + r);
+    const double cube = 8.0 * double(radius) * radius * radius;
+    return exp_nonpositive(-density_scale * float(glm::max(sum / cube, 0.0)) * radius);
+  }
+  PENUMBRA_HD vec3 operator()(int, vec3 p, const LightSample&) const { return vec3(occlusion(p)); }
+};
+
+// The occlusion from a cache inside the volume box, from the table elsewhere.
+struct CachedAmbientOcclusion {
+  AmbientOcclusion direct;
+  VolumeView cache;
+  Box3 box;
+  PENUMBRA_HD vec3 operator()(int light, vec3 p, const LightSample& ls) const {
+    if (box.contains(p)) return vec3(cache.sample(p));
+    return direct(light, p, ls);
+  }
+};
+
+}  // namespace penumbra
