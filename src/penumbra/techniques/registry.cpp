@@ -11,6 +11,8 @@
 #include "penumbra/techniques/filtered_sat/filtered_sat.h"
 #include "penumbra/techniques/sat_ao/sat_ao.h"
 #include "penumbra/techniques/cone_shadows/cone_shadows.h"
+#include "penumbra/techniques/ipsvi/ipsvi.h"
+#include "penumbra/techniques/half_angle/half_angle.h"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -29,6 +31,8 @@ const std::vector<TechniqueInfo>& technique_registry() {
       filtered_sat_info(),
       sat_ao_info(),
       cone_shadows_info(),
+      ipsvi_info(),
+      half_angle_info(),
   };
   return registry;
 }

@@ -1,0 +1,284 @@
+#include "penumbra/techniques/half_angle/half_angle_renderer.h"
+
+#include "penumbra/base/error.h"
+#include "penumbra/base/memory_budget.h"
+#include "penumbra/base/parallel.h"
+#include "penumbra/render/lighting.h"
+#include "penumbra/techniques/half_angle/half_angle_kernels.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+
+namespace penumbra {
+namespace {
+
+struct Rect {
+  int x0, y0, x1, y1;  // [x0, x1) x [y0, y1)
+};
+
+// Pixel rectangle covering the projection of the points (the whole image if
+// one lies behind the camera).
+Rect eye_rect(const CameraView& c, int width, int height, const vec3* points, int count) {
+  const Rect full{0, 0, width, height};
+  if (count == 0) return Rect{0, 0, 0, 0};
+  const float aspect = float(width) / float(height);
+  vec2 lo(kInfinity), hi(-kInfinity);
+  for (int i = 0; i < count; ++i) {
+    const vec3 q = points[i] - c.eye;
+    float sx = glm::dot(q, c.right), sy = glm::dot(q, c.up);
+    if (!c.orthographic) {
+      const float z = glm::dot(q, c.forward);
+      if (!(z > 1e-6f)) return full;
+      sx /= z;
+      sy /= z;
+    }
+    const vec2 p((sx / (c.half_height * aspect) + 1.0f) * 0.5f * float(width),
+                 (1.0f - sy / c.half_height) * 0.5f * float(height));
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  return Rect{int(std::clamp(std::floor(lo.x) - 1.0f, 0.0f, float(width))),
+              int(std::clamp(std::floor(lo.y) - 1.0f, 0.0f, float(height))),
+              int(std::clamp(std::ceil(hi.x) + 1.0f, 0.0f, float(width))),
+              int(std::clamp(std::ceil(hi.y) + 1.0f, 0.0f, float(height)))};
+}
+
+Rect light_rect(const LightCacheProjection& p, const vec3* points, int count) {
+  const Rect full{0, 0, p.size, p.size};
+  if (count == 0) return Rect{0, 0, 0, 0};
+  if (p.mapping == LightMapping::Octahedral) return full;
+  vec2 lo(kInfinity), hi(-kInfinity);
+  for (int i = 0; i < count; ++i) {
+    const vec3 q = p.project(points[i]);
+    if (q.x < 0.0f && q.y < 0.0f) return full;
+    lo = glm::min(lo, vec2(q));
+    hi = glm::max(hi, vec2(q));
+  }
+  const float n = float(p.size);
+  return Rect{int(std::clamp(std::floor(lo.x) - 1.0f, 0.0f, n)), int(std::clamp(std::floor(lo.y) - 1.0f, 0.0f, n)),
+              int(std::clamp(std::ceil(hi.x) + 1.0f, 0.0f, n)), int(std::clamp(std::ceil(hi.y) + 1.0f, 0.0f, n))};
+}
+
+// Gaussian blur of the diffuse channels (y, z, w) over a rectangle, variance
+// `variance` texels^2 per axis, by passes of the binomial [w, 1 - 2w, w].
+void blur_diffuse(std::vector<vec4>& buffer, std::vector<vec4>& scratch, int n, const Rect& r, float variance) {
+  if (!(variance > 1e-4f) || r.x1 <= r.x0 || r.y1 <= r.y0) return;
+  const int passes = int(std::ceil(variance / 0.5f));
+  const float w = variance / (2.0f * float(passes));
+  auto pass = [&](bool along_x) {
+    parallel_for(r.y0, r.y1, [&](std::int64_t first, std::int64_t last) {
+      for (std::int64_t y = first; y < last; ++y) {
+        for (int x = r.x0; x < r.x1; ++x) {
+          const int i = x + n * int(y);
+          const int prev = along_x ? (x > 0 ? i - 1 : i) : (y > 0 ? i - n : i);
+          const int next = along_x ? (x + 1 < n ? i + 1 : i) : (y + 1 < n ? i + n : i);
+          vec4 v = buffer[i];
+          const vec3 mid(v.y, v.z, v.w);
+          const vec3 a(buffer[prev].y, buffer[prev].z, buffer[prev].w);
+          const vec3 b(buffer[next].y, buffer[next].z, buffer[next].w);
+          const vec3 out = (1.0f - 2.0f * w) * mid + w * (a + b);
+          scratch[i] = vec4(v.x, out);
+        }
+      }
+    });
+    for (int y = r.y0; y < r.y1; ++y) {
+      std::copy(scratch.begin() + (r.x0 + n * y), scratch.begin() + (r.x1 + n * y), buffer.begin() + (r.x0 + n * y));
+    }
+  };
+  for (int i = 0; i < passes; ++i) {
+    pass(true);
+    pass(false);
+  }
+}
+
+}  // namespace
+
+void HalfAngleRenderer::prepare(const Scene& scene, const HalfAngleSettings& settings) {
+  resources_.update(scene, scene.material().shading == Shading::Phong);
+  settings_ = settings;
+}
+
+void HalfAngleRenderer::render(const Scene& scene, Image& image, RenderStats* stats) {
+  const RenderView view = resources_.view(scene);
+  const RenderView shadow = resources_.shadow_view(scene);
+  std::vector<const Light*> lights;
+  for (const Light& l : scene.lights()) {
+    if (l.type != LightType::Environment) lights.push_back(&l);
+  }
+  if (lights.empty()) {
+    render_image(view, [&](const auto&) { return ScatteringLighting<NoShadows>{&view, {}, view.material.shading}; },
+                 image, stats);
+    return;
+  }
+  const int width = view.width, height = view.height;
+  if (image.width() != width || image.height() != height) image = Image(width, height);
+  if (settings_.light_buffer_size != 0 && settings_.light_buffer_size < 16) {
+    throw InvalidArgument("light_buffer_size", "must be 0 (the image size) or in [16, 4096]");
+  }
+  const int n = settings_.light_buffer_size > 0 ? settings_.light_buffer_size : std::clamp(std::max(width, height), 16, 4096);
+  const std::size_t pixels = std::size_t(width) * std::size_t(height);
+  const std::size_t texels = std::size_t(n) * std::size_t(n);
+  check_memory_budget("half-angle buffers",
+                      checked_product({texels, 2 * sizeof(vec4) + sizeof(SlicedRay)}) +
+                          checked_product({pixels, sizeof(vec4) + sizeof(SlicedRay) + sizeof(EyePixel) + 8}));
+  light_.resize(texels);
+  blur_.resize(texels);
+  sums_.assign(pixels, vec4(0.0f));
+  std::vector<SlicedRay> eye(pixels), light_rays(texels);
+  std::vector<int> eye_plane(pixels, -1);
+  parallel_for(0, height, [&](std::int64_t first, std::int64_t last) {
+    for (std::int64_t y = first; y < last; ++y) {
+      for (int x = 0; x < width; ++x) {
+        const std::size_t i = std::size_t(x) + std::size_t(width) * std::size_t(y);
+        const Ray ray = view.camera.pixel_ray(float(x) + 0.5f, float(y) + 0.5f, width, height);
+        eye[i].origin = ray.origin;
+        eye[i].direction = ray.direction;
+        eye_plane[i] = nearest_plane(view, ray, kInfinity, eye[i].t_max);
+      }
+    }
+  });
+  const ForwardScattering scattering =
+      make_forward_scattering(settings_.albedo, settings_.cone_angle_deg, view.material.phase_g, view.material.albedo,
+                              view.volume.min_spacing());
+  std::atomic<std::uint64_t> samples{0};
+  std::vector<EyePixel> px(pixels);
+  std::vector<int> bucket_start, bucket_pixels;
+
+  for (std::size_t li = 0; li < lights.size(); ++li) {
+    const Light& light = *lights[li];
+    const bool first_pass = li == 0;
+    RenderView lit = view, lit_shadow = shadow;
+    lit.lights = lit_shadow.lights = &light;
+    lit.light_count = lit_shadow.light_count = 1;
+    if (!first_pass) {
+      lit.material.ambient = 0.0f;
+      lit.background = vec3(0.0f);
+    }
+    HalfAngleKernel kernel;
+    kernel.view = &lit;
+    kernel.shadow = &lit_shadow;
+    kernel.separate_shadow_tf = scene.shadow_transfer_function().has_value();
+    kernel.slices = make_slice_setup(view.camera, light, view.box, settings_.slices, view.step);
+    kernel.projection = make_light_cache_projection(light, view.box, n);
+    kernel.light = light_.data();
+    kernel.scattering = scattering;
+    const SliceSetup& slices = kernel.slices;
+    last_slices_ = slices.count;
+    const vec3 s = slices.axis;
+    std::fill(light_.begin(), light_.end(), vec4(1.0f));
+    parallel_for(0, n, [&](std::int64_t first, std::int64_t last) {
+      for (std::int64_t y = first; y < last; ++y) {
+        for (int x = 0; x < n; ++x) {
+          const Ray r = kernel.projection.texel_ray(vec2(float(x) + 0.5f, float(y) + 0.5f));
+          light_rays[std::size_t(x) + std::size_t(n) * std::size_t(y)] =
+              SlicedRay{r.origin, r.direction, glm::dot(s, r.origin), glm::dot(s, r.direction), kInfinity};
+        }
+      }
+    });
+    // Eye pixels, and the slice before which each plane hit is shaded (the
+    // number of slices lying before it along s), bucketed.
+    bucket_start.assign(std::size_t(slices.count) + 2, 0);
+    std::vector<int> plane_slice(pixels, -1);
+    for (std::size_t i = 0; i < pixels; ++i) {
+      eye[i].origin_s = glm::dot(s, eye[i].origin);
+      eye[i].direction_s = glm::dot(s, eye[i].direction);
+      px[i] = EyePixel{slices.eye_front_to_back ? vec3(0.0f) : lit.background, 1.0f, false};
+      if (eye_plane[i] < 0) continue;
+      const float q = glm::dot(s, eye[i].origin + eye[i].t_max * eye[i].direction);
+      const float before = std::ceil((q - slices.first) / slices.spacing);
+      plane_slice[i] = int(std::clamp(before, 0.0f, float(slices.count)));
+      ++bucket_start[std::size_t(plane_slice[i]) + 1];
+    }
+    for (std::size_t k = 1; k < bucket_start.size(); ++k) bucket_start[k] += bucket_start[k - 1];
+    bucket_pixels.assign(std::size_t(bucket_start.back()), 0);
+    {
+      std::vector<int> fill(bucket_start.begin(), bucket_start.end() - 1);
+      for (std::size_t i = 0; i < pixels; ++i) {
+        if (plane_slice[i] >= 0) bucket_pixels[std::size_t(fill[std::size_t(plane_slice[i])]++)] = int(i);
+      }
+    }
+    auto shade_planes = [&](int k) {
+      const int b0 = bucket_start[std::size_t(k)], b1 = bucket_start[std::size_t(k) + 1];
+      parallel_for(b0, b1, [&](std::int64_t first, std::int64_t last) {
+        for (std::int64_t b = first; b < last; ++b) {
+          const std::size_t i = std::size_t(bucket_pixels[std::size_t(b)]);
+          EyePixel& p = px[i];
+          if (slices.eye_front_to_back && p.transmittance <= 1.0f - lit.ert_threshold) continue;
+          const vec3 q = eye[i].origin + eye[i].t_max * eye[i].direction;
+          const vec3 visibility = kernel.visibility(q, 0.0f, vec3(0.0f));
+          const vec3 c = ScatteringLighting<FixedVisibility>{&lit, {visibility}, lit.material.shading}.plane(
+              PlaneHit{q, eye_plane[i], eye[i].direction});
+          if (slices.eye_front_to_back) {
+            p.color += p.transmittance * c;
+            p.transmittance = 0.0f;
+          } else {
+            p.color = c;
+            p.transmittance = 1.0f;
+          }
+          p.plane_done = true;
+        }
+      });
+    };
+    // Diffuse spread per slice, in light-buffer texels^2.
+    const float light_step = slices.spacing / glm::max(glm::dot(s, slices.light_travel), 1e-3f);
+    const float texel = kernel.projection.texel_world_size(
+        light.at_infinity() ? 0.0f : glm::length(view.box.center() - light.position));
+    const float variance = scattering.has_diffuse() ? light_step * scattering.spread_per_length / (texel * texel) : 0.0f;
+
+    with_sampler(view.volume, [&](const auto& sampler) {
+      vec3 polygon[12];
+      for (int k = 0; k < slices.count; ++k) {
+        shade_planes(k);
+        const int corners = slice_polygon(view.box, s, slices.position(k), polygon);
+        const Rect er = eye_rect(view.camera, width, height, polygon, corners);
+        parallel_for(er.y0, er.y1, [&](std::int64_t first, std::int64_t last) {
+          std::uint64_t count = 0;
+          for (std::int64_t y = first; y < last; ++y) {
+            for (int x = er.x0; x < er.x1; ++x) {
+              const std::size_t i = std::size_t(x) + std::size_t(width) * std::size_t(y);
+              eye_slice_sample(kernel, sampler, eye[i], k, px[i], count);
+            }
+          }
+          samples.fetch_add(count, std::memory_order_relaxed);
+        });
+        const Rect lr = light_rect(kernel.projection, polygon, corners);
+        parallel_for(lr.y0, lr.y1, [&](std::int64_t first, std::int64_t last) {
+          std::uint64_t count = 0;
+          for (std::int64_t y = first; y < last; ++y) {
+            for (int x = lr.x0; x < lr.x1; ++x) {
+              const std::size_t i = std::size_t(x) + std::size_t(n) * std::size_t(y);
+              light_slice_sample(kernel, sampler, light_rays[i], k, light_[i], count);
+            }
+          }
+          samples.fetch_add(count, std::memory_order_relaxed);
+        });
+        blur_diffuse(light_, blur_, n, lr, variance);
+      }
+      shade_planes(slices.count);
+      return 0;
+    });
+
+    for (std::size_t i = 0; i < pixels; ++i) {
+      EyePixel& p = px[i];
+      float alpha = 1.0f - p.transmittance;
+      if (p.plane_done) {
+        alpha = 1.0f;
+      } else if (slices.eye_front_to_back && p.transmittance > 1.0f - lit.ert_threshold) {
+        p.color += p.transmittance * lit.background;
+      }
+      sums_[i] += vec4(p.color, first_pass ? alpha : 0.0f);
+    }
+  }
+  std::copy(sums_.begin(), sums_.end(), image.data());
+  if (stats) {
+    stats->samples += samples.load();
+    stats->rays += std::uint64_t(pixels) * lights.size();
+  }
+}
+
+std::uint64_t HalfAngleRenderer::aux_bytes() const {
+  return (light_.size() + blur_.size()) * sizeof(vec4) + light_.size() * sizeof(SlicedRay);
+}
+
+}  // namespace penumbra

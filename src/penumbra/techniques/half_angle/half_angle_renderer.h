@@ -1,0 +1,42 @@
+#pragma once
+// The CPU half-angle slicer: per light, a sweep over the slices of
+// slice_geometry.h with a 2D eye buffer (the image) and a 2D light buffer
+// (light_cache_projection.h's mapping, light_buffer_size texels per side). Per slice, in parallel over buffer rows: opaque planes whose hit
+// lies before this slice are shaded, the eye buffer takes the slice's samples
+// lit by the light buffer, then the light buffer is attenuated by the slice
+// and (with albedo > 0) its diffuse part blurred. Only the rows the slice's
+// cut through the box projects to are visited; empty macrocells cost no sample.
+// Several lights: one sweep each, added up as in IPSVI.
+#include "penumbra/render/image.h"
+#include "penumbra/render/render_loop.h"
+#include "penumbra/render/scene_resources.h"
+#include "penumbra/scene/scene.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace penumbra {
+
+struct HalfAngleSettings {
+  int slices = 0;  // 0: one slab per ray step along the central viewing ray
+  float cone_angle_deg = 20.0f;
+  float albedo = 0.0f;
+  int light_buffer_size = 0;  // texels per side; 0: max(width, height) of the image (Kniss et al.)
+};
+
+class HalfAngleRenderer {
+ public:
+  void prepare(const Scene& scene, const HalfAngleSettings& settings);
+  void render(const Scene& scene, Image& image, RenderStats* stats = nullptr);
+  std::uint64_t aux_bytes() const;
+  int last_slice_count() const { return last_slices_; }
+
+ private:
+  SceneResources resources_;
+  HalfAngleSettings settings_;
+  std::vector<vec4> light_, blur_;
+  std::vector<vec4> sums_;
+  int last_slices_ = 0;
+};
+
+}  // namespace penumbra

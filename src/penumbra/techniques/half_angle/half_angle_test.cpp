@@ -1,0 +1,203 @@
+// half-angle against shadow-rays (its albedo-0 limit), against ipsvi (Sundén
+// et al. 2011, Fig. 8: the two look alike), and the slicing geometry.
+//
+// Tolerances are mean CIEDE2000 (about one unit = a just-noticeable
+// difference). Slices sample the volume where the viewing rays cross them, at
+// about the ray caster's step, and the light buffer is bilinear with texels of
+// about one voxel; the differences to shadow-rays are resampling at shadow
+// edges: a few dE there, well under 1 on average.
+#include "penumbra/analysis/image_metrics.h"
+#include "penumbra/io/image_io.h"
+#include "penumbra/io/scene_json.h"
+#include "penumbra/techniques/half_angle/slice_geometry.h"
+#include "penumbra/techniques/registry.h"
+#include "test_scene.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+
+namespace penumbra {
+namespace {
+
+using testing::procedural_scene;
+using testing::render_with;
+
+Scene lit_spheres(int image_size = 48) {
+  Scene scene = procedural_scene("spheres", ivec3(48), image_size);
+  TransferFunction tf({{0.0f, vec3(1.0f, 0.6f, 0.3f), 0.0f},
+                       {0.3f, vec3(1.0f, 0.6f, 0.3f), 0.2f},
+                       {1.0f, vec3(0.9f, 0.9f, 1.0f), 0.8f}});
+  tf.set_range(vec2(0.0f, 1.0f));
+  scene.set_transfer_function(tf);
+  Light light;
+  light.direction = glm::normalize(vec3(0.5f, 0.7f, -1.0f));
+  scene.set_lights({light});
+  Material m;
+  m.ambient = 0.05f;
+  scene.set_material(m);
+  const float z = scene.volume().world_box().lower.z - 8.0f;
+  scene.set_planes({Plane{vec3(0.0f, 0.0f, z), vec3(0.0f, 0.0f, 1.0f), vec3(0.8f)}});
+  return scene;
+}
+
+void save(const Image& image, const std::string& name) {
+  if (const char* dir = std::getenv("PENUMBRA_TEST_IMAGES")) write_png(std::string(dir) + "/" + name, image);
+}
+
+double mean_de(const Image& a, const Image& b) { return delta_e_stats(a, b).mean; }
+
+TEST(HalfAngle, AlbedoZeroMatchesShadowRaysOnTheSpheres) {
+  const Scene scene = lit_spheres();
+  const Image reference = render_with(scene, "shadow-rays");
+  const Image half = render_with(scene, "half-angle");
+  save(reference, "half-angle-spheres-shadow-rays.png");
+  save(half, "half-angle-spheres.png");
+  const DeltaEStats de = delta_e_stats(half, reference);
+  std::printf("half-angle vs shadow-rays: mean dE %.3f, p99 %.3f\n", de.mean, de.p99);
+  EXPECT_LT(de.mean, 0.3);
+  EXPECT_LT(de.p99, 3.0);
+}
+
+// A light facing the viewer: the slicing axis flips and the eye buffer is
+// composited back to front; a point light outside the volume: a perspective
+// light buffer.
+TEST(HalfAngle, FlippedAxisAndPointLightsMatchShadowRays) {
+  Scene scene = lit_spheres();
+  Light back;
+  back.direction = glm::normalize(vec3(0.3f, -1.0f, -0.4f));
+  scene.set_lights({back});
+  const double de_back = mean_de(render_with(scene, "half-angle"), render_with(scene, "shadow-rays"));
+  Light point;
+  point.type = LightType::Point;
+  point.position = vec3(30.0f, -50.0f, 60.0f);
+  point.intensity = 6000.0f;
+  scene.set_lights({point});
+  const double de_point = mean_de(render_with(scene, "half-angle"), render_with(scene, "shadow-rays"));
+  std::printf("half-angle: backlit mean dE %.3f, point light %.3f\n", de_back, de_point);
+  EXPECT_LT(de_back, 0.3);
+  EXPECT_LT(de_point, 0.3);
+}
+
+// Few slices undersample the volume: the error against shadow-rays falls as
+// the slice count rises toward the ray caster's step.
+TEST(HalfAngle, MoreSlicesConverge) {
+  const Scene scene = lit_spheres();
+  const Image reference = render_with(scene, "shadow-rays");
+  const double coarse = mean_de(render_with(scene, "half-angle", {{"slices", 24.0}}), reference);
+  const double fine = mean_de(render_with(scene, "half-angle", {{"slices", 192.0}}), reference);
+  std::printf("half-angle: 24 slices mean dE %.3f, 192 slices %.3f\n", coarse, fine);
+  EXPECT_LT(fine, 0.5 * coarse);
+}
+
+// Forward scattering: no cone is no change; a cone lightens shadows as in ipsvi.
+TEST(HalfAngle, ForwardScatteringReducesToSingleScatteringWithoutACone) {
+  const Scene scene = lit_spheres();
+  const Image single = render_with(scene, "half-angle");
+  EXPECT_LT(mean_de(render_with(scene, "half-angle", {{"albedo", 0.8}, {"cone_angle_deg", 0.0}}), single), 0.05);
+  EXPECT_GT(mean_de(render_with(scene, "half-angle", {{"albedo", 0.8}, {"cone_angle_deg", 30.0}}), single), 0.05);
+}
+
+// Fig. 8 of Sundén et al.: ipsvi and half-angle slicing look alike. Same
+// optical model here, so they agree as closely as each agrees with
+// shadow-rays: on the spheres with forward scattering, and on the engine CT
+// with and without it.
+TEST(HalfAngleVersusIpsvi, AgreeOnTheSpheresWithForwardScattering) {
+  // Translucent white spheres over a floor, seen from above, with a forward
+  // phase function: the scattering visibly lightens and softens the shadows.
+  Scene scene = lit_spheres();
+  scene.set_transfer_function(testing::step_tf(0.2f, vec3(1.0f), 0.15f));
+  Camera camera = scene.camera();
+  camera.eye = vec3(0.0f, -60.0f, 150.0f);
+  camera.target = vec3(0.0f, 0.0f, -20.0f);
+  camera.fov_deg = 40.0f;
+  scene.set_camera(camera);
+  Material m = scene.material();
+  m.phase_g = 0.6f;
+  scene.set_material(m);
+  const ParameterSettings params = {{"albedo", 0.8}, {"cone_angle_deg", 30.0}};
+  const Image ipsvi = render_with(scene, "ipsvi", params);
+  const Image half = render_with(scene, "half-angle", params);
+  const Image single = render_with(scene, "ipsvi");
+  save(ipsvi, "fig8-spheres-ipsvi.png");
+  save(half, "fig8-spheres-half-angle.png");
+  const double de = mean_de(ipsvi, half), effect = mean_de(ipsvi, single);
+  std::printf("spheres, albedo 0.8: ipsvi vs half-angle mean dE %.3f (scattering itself changes %.3f)\n", de, effect);
+  EXPECT_LT(de, 0.5);
+  EXPECT_LT(de, 0.5 * effect);
+}
+
+TEST(HalfAngleVersusIpsvi, AgreeOnTheEngine) {
+  if (!std::filesystem::exists(std::filesystem::path(PENUMBRA_SHARED_DATA_DIR) / "engine_256x256x128_uint8.nhdr")) {
+    GTEST_SKIP() << "the engine CT is not in " << PENUMBRA_SHARED_DATA_DIR;
+  }
+  Scene scene = load_scene(std::filesystem::path(PENUMBRA_SOURCE_DIR) / "scenes" / "engine.json");
+  RenderSettings r = scene.render();
+  r.width = r.height = 64;
+  scene.set_render(r);
+  const Image reference = render_with(scene, "shadow-rays");
+  for (const double albedo : {0.0, 0.5}) {
+    const Image ipsvi = render_with(scene, "ipsvi", {{"albedo", albedo}});
+    // A light buffer of about one texel per voxel (the image's 64 texels
+    // would be six voxels wide); ipsvi's cache is the size of the pixels but
+    // its light segments are marched at the sample, so it needs no more.
+    const Image half = render_with(scene, "half-angle", {{"albedo", albedo}, {"light_buffer_size", 256.0}});
+    if (albedo > 0.0) {
+      save(ipsvi, "fig8-engine-ipsvi.png");
+      save(half, "fig8-engine-half-angle.png");
+    }
+    const DeltaEStats de = delta_e_stats(ipsvi, half);
+    std::printf("engine, albedo %.1f: ipsvi vs half-angle mean dE %.3f, p99 %.3f; vs shadow-rays %.3f / %.3f\n",
+                albedo, de.mean, de.p99, mean_de(ipsvi, reference), mean_de(half, reference));
+    // Their errors sit at different shadow edges, so they add: the two agree
+    // as well as the sum of their distances to shadow-rays, and under 1 dE.
+    EXPECT_LT(de.mean, 1.0);
+    EXPECT_LT(de.mean, 1.2 * (mean_de(ipsvi, reference) + mean_de(half, reference)));
+  }
+}
+
+TEST(SliceGeometry, HalfAngleAxisKeepsBothOrders) {
+  Camera camera;
+  camera.eye = vec3(0.0f, -100.0f, 20.0f);
+  camera.target = vec3(0.0f);
+  const CameraView view = camera.view();
+  const Box3 box{vec3(-10.0f, -20.0f, -5.0f), vec3(10.0f, 20.0f, 5.0f)};
+  for (const vec3& direction : {vec3(0.3f, 0.9f, -0.5f), vec3(0.2f, -1.0f, -0.3f), vec3(1.0f, 0.0f, 0.0f),
+                               vec3(0.0f, 1.0f, 0.0f), vec3(0.0f, -1.0f, 0.0f)}) {
+    Light light;
+    light.direction = glm::normalize(direction);
+    const SliceSetup s = make_slice_setup(view, light, box, 0, 0.5f);
+    EXPECT_NEAR(glm::length(s.axis), 1.0f, 1e-5f);
+    EXPECT_GT(glm::dot(s.axis, light.direction), 0.0f) << "the light advances with the slices";
+    EXPECT_EQ(s.eye_front_to_back, glm::dot(view.forward, light.direction) >= 0.0f);
+    // Along s the eye moves forward (front to back) or backward (flipped).
+    EXPECT_EQ(glm::dot(s.axis, view.forward) > 0.0f, s.eye_front_to_back);
+    // The slices span the box, half a spacing in from its extremes, and the
+    // central viewing ray crosses one per step.
+    float lo = kInfinity, hi = -kInfinity;
+    for (int i = 0; i < 8; ++i) {
+      const vec3 c(i & 1 ? box.upper.x : box.lower.x, i & 2 ? box.upper.y : box.lower.y,
+                   i & 4 ? box.upper.z : box.lower.z);
+      lo = std::min(lo, glm::dot(s.axis, c));
+      hi = std::max(hi, glm::dot(s.axis, c));
+    }
+    EXPECT_NEAR(s.position(0), lo + 0.5f * s.spacing, 1e-3f);
+    EXPECT_NEAR(s.position(s.count - 1), hi - 0.5f * s.spacing, 1e-3f);
+    EXPECT_LE(s.spacing / std::abs(glm::dot(s.axis, view.forward)), 0.5f + 1e-4f);
+    // Each cut through the box lies on its plane and inside the box.
+    vec3 polygon[12];
+    const int n = slice_polygon(box, s.axis, s.position(s.count / 2), polygon);
+    EXPECT_GE(n, 3);
+    for (int i = 0; i < n; ++i) {
+      EXPECT_NEAR(glm::dot(s.axis, polygon[i]), s.position(s.count / 2), 1e-3f);
+      const Box3 grown{box.lower - vec3(1e-3f), box.upper + vec3(1e-3f)};
+      EXPECT_TRUE(grown.contains(polygon[i]));
+    }
+  }
+  Light light;
+  EXPECT_EQ(make_slice_setup(view, light, box, 37, 0.5f).count, 37);
+}
+
+}  // namespace
+}  // namespace penumbra

@@ -1,0 +1,226 @@
+#include "penumbra/techniques/ipsvi/sweep_renderer.h"
+
+#include "penumbra/base/error.h"
+#include "penumbra/base/memory_budget.h"
+#include "penumbra/base/parallel.h"
+#include "penumbra/render/lighting.h"
+#include "penumbra/techniques/ipsvi/ipsvi_ray.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+
+namespace penumbra {
+namespace {
+
+struct BlockPixel {
+  int x, y;
+  float weight;
+};
+
+}  // namespace
+
+int ipsvi_cache_size(const Scene& scene, const IpsviSettings& settings) {
+  if (settings.cache_size != 0) {
+    if (settings.cache_size < 16 || settings.cache_size > 4096) {
+      throw InvalidArgument("cache_size", "must be 0 (automatic) or in [16, 4096]");
+    }
+    return settings.cache_size;
+  }
+  // A texel about as wide as a pixel at the volume's centre: finer texels
+  // would be missed by the rays of a line (holes that fall back to longer
+  // light segments), coarser ones blur shadows.
+  const Box3 box = scene.volume().world_box();
+  const Camera& camera = scene.camera();
+  const float height = camera.projection == Projection::Orthographic
+                           ? camera.ortho_height
+                           : 2.0f * std::tan(0.5f * glm::radians(camera.fov_deg)) * glm::length(box.center() - camera.eye);
+  const float pixel = std::max(height / float(scene.render().height), 1e-6f);
+  float extent = 0.0f;
+  for (const Light& light : scene.lights()) {
+    if (light.type == LightType::Environment) continue;
+    const LightCacheProjection p = make_light_cache_projection(light, box, 1);
+    const float depth = light.at_infinity() ? 0.0f : glm::length(box.center() - light.position);
+    extent = std::max(extent, p.texel_world_size(depth));
+  }
+  return std::clamp(int(std::ceil(extent / pixel)), 16, 4096);
+}
+
+void IpsviRenderer::prepare(const Scene& scene, const IpsviSettings& settings) {
+  resources_.update(scene, scene.material().shading == Shading::Phong);
+  const SceneVersions& v = scene.versions();
+  const int cache_size = ipsvi_cache_size(scene, settings);
+  const bool diffuse_changed = (settings.albedo > 0.0f) != (settings_.albedo > 0.0f);
+  const bool stale = !built_ || v.lights != lights_version_ || v.geometry != geometry_version_ ||
+                     v.data != data_version_ || cache_size != cache_.size() || diffuse_changed;
+  settings_ = settings;
+  if (!stale) return;
+  lights_.clear();
+  const Box3 box = scene.volume().world_box();
+  for (const Light& light : scene.lights()) {
+    if (light.type == LightType::Environment) continue;  // not a single-scattering light (light.h)
+    LightCache lc;
+    lc.light = light;
+    check_memory_budget("ipsvi initial cache",
+                        checked_product({std::uint64_t(cache_size), std::uint64_t(cache_size), sizeof(vec2)}));
+    lc.projection = make_light_cache_projection(light, box, cache_size);
+    lc.initial = initial_cache_state(lc.projection, box, scene.clip_planes());
+    lights_.push_back(std::move(lc));
+  }
+  cache_.allocate(cache_size, settings.albedo > 0.0f);
+  lights_version_ = v.lights;
+  geometry_version_ = v.geometry;
+  data_version_ = v.data;
+  built_ = true;
+  ++rebuilds_;
+}
+
+void IpsviRenderer::render(const Scene& scene, Image& image, RenderStats* stats) {
+  const RenderView view = resources_.view(scene);
+  const RenderView shadow = resources_.shadow_view(scene);
+  counts_ = IpsviFrameCounts{};
+  if (lights_.empty()) {
+    // Nothing casts shadows: ambient only, through the shared loop.
+    render_image(view, [&](const auto&) { return ScatteringLighting<NoShadows>{&view, {}, view.material.shading}; },
+                 image, stats);
+    if (stats) counts_.view_samples = stats->samples;
+    return;
+  }
+  const int width = view.width, height = view.height;
+  if (image.width() != width || image.height() != height) image = Image(width, height);
+  const std::size_t pixels = std::size_t(width) * std::size_t(height);
+  sums_.assign(pixels, vec4(0.0f));
+  coverage_.assign(pixels, 0.0f);
+  const ForwardScattering scattering =
+      make_forward_scattering(settings_.albedo, settings_.cone_angle_deg, view.material.phase_g,
+                              view.material.albedo, view.volume.min_spacing());
+  const PixelRect image_rect{0, 0, width, height};
+  const PixelRect volume_rect = projected_box_rect(view.camera, width, height, view.box);
+  // Planes need every pixel: a floor outside the volume's footprint may lie in its shadow.
+  const PixelRect rect = view.plane_count > 0 ? image_rect : volume_rect;
+  std::atomic<std::uint64_t> view_samples{0}, light_samples{0}, write_samples{0};
+  std::vector<BlockPixel> block;
+
+  for (std::size_t li = 0; li < lights_.size(); ++li) {
+    const LightCache& lc = lights_[li];
+    const bool first_pass = li == 0;
+    RenderView lit = view;
+    lit.lights = &lc.light;
+    lit.light_count = 1;
+    RenderView lit_shadow = shadow;
+    lit_shadow.lights = &lc.light;
+    lit_shadow.light_count = 1;
+    if (!first_pass) {
+      lit.material.ambient = 0.0f;
+      lit.background = vec3(0.0f);
+    }
+    const ImageLight image_light = project_light(view.camera, width, height, lc.light);
+    const SweepPlan plan = make_sweep_plan(image_light, rect, settings_.band_deg, axis_hint_);
+    if (image_light.flow == LightFlow::Parallel && image_light.direction != vec2(0.0f) && !plan.zones.empty()) {
+      axis_hint_ = plan.zones.front().axis;
+    }
+    const bool early = settings_.early_termination;
+    if (early) {
+      early_.compute(lit, lc.light, image_light, rect);
+      counts_.prepass_samples += early_.samples();
+    }
+    IpsviKernel kernel;
+    kernel.view = &lit;
+    kernel.shadow = &lit_shadow;
+    kernel.separate_shadow_tf = scene.shadow_transfer_function().has_value();
+    kernel.projection = lc.projection;
+    kernel.scattering = scattering;
+    kernel.piecewise = settings_.piecewise_integration;
+
+    with_sampler(view.volume, [&](const auto& sampler) {
+      // A written texel's new light: with piecewise integration its own light
+      // ray (through the texel centre) marched from the stored depth to the
+      // block's mean depth, and its diffuse part spread over that distance;
+      // without it the mean of the samples' light (Listing 4.1).
+      auto advance = [&](int texel, const CachedLight& stored, const CachedLight& written) {
+        if (!kernel.piecewise) return written;
+        const int n = kernel.cache.size;
+        const vec2 center(float(texel % n) + 0.5f, float(texel / n) + 0.5f);
+        const Ray light_ray = kernel.projection.texel_ray(center);
+        const float delta = written.depth - stored.depth;
+        std::uint64_t samples = 0;
+        const OpticalDepth tau = light_segment_depth(lit_shadow, sampler, light_ray.at(written.depth),
+                                                     -light_ray.direction, delta, scattering, samples);
+        write_samples.fetch_add(samples, std::memory_order_relaxed);
+        CachedLight out;
+        out.depth = written.depth;
+        out.direct = stored.direct * exp_nonpositive(-tau.direct);
+        if (scattering.has_diffuse()) {
+          const float spread =
+              std::sqrt(delta * scattering.spread_per_length) / kernel.projection.texel_world_size(written.depth);
+          out.diffuse = kernel.cache.read_diffuse(center, spread) *
+                        vec3(exp_nonpositive(-tau.diffuse.r), exp_nonpositive(-tau.diffuse.g),
+                             exp_nonpositive(-tau.diffuse.b));
+        }
+        return out;
+      };
+      for (const SweepZone& zone : plan.zones) {
+        cache_.reset(lc.initial);
+        kernel.cache = cache_.view(lc.projection.max_depth);
+        const int other = 1 - zone.axis;
+        const std::size_t line_count = zone.lines.size();
+        for (std::size_t first = 0; first < line_count; first += std::size_t(settings_.line_width)) {
+          block.clear();
+          const std::size_t last = std::min(line_count, first + std::size_t(settings_.line_width));
+          for (std::size_t l = first; l < last; ++l) {
+            const SweepLine& line = zone.lines[l];
+            for (int a = line.lo; a <= line.hi; ++a) {
+              ivec2 p;
+              p[zone.axis] = line.coordinate;
+              p[other] = a;
+              const float w = zone.weight(vec2(p) + vec2(0.5f));
+              if (w > 0.0f) block.push_back(BlockPixel{p.x, p.y, w});
+            }
+          }
+          parallel_for(
+              0, std::int64_t(block.size()),
+              [&](std::int64_t begin, std::int64_t end) {
+                IpsviRayCounts counts;
+                for (std::int64_t i = begin; i < end; ++i) {
+                  const BlockPixel& bp = block[std::size_t(i)];
+                  const Ray ray = lit.camera.pixel_ray(float(bp.x) + 0.5f, float(bp.y) + 0.5f, width, height);
+                  const float exit = early ? early_.exit_depth(bp.x, bp.y) : kInfinity;
+                  const vec4 c = trace_ipsvi_ray(kernel, sampler, ray, pixel_sample_offset(lit, bp.x, bp.y), exit,
+                                                 counts);
+                  const std::size_t index = std::size_t(bp.x) + std::size_t(width) * std::size_t(bp.y);
+                  sums_[index] += bp.weight * vec4(vec3(c), first_pass ? c.a : 0.0f);
+                  if (first_pass) coverage_[index] += bp.weight;
+                }
+                view_samples.fetch_add(counts.view_samples, std::memory_order_relaxed);
+                light_samples.fetch_add(counts.light_samples, std::memory_order_relaxed);
+              },
+              8);
+          cache_.resolve(advance);
+          ++counts_.blocks;
+        }
+      }
+      return 0;
+    });
+  }
+
+  // Pixels no sweep reached see the background.
+  const vec4 background(view.background, 0.0f);
+  for (std::size_t i = 0; i < pixels; ++i) {
+    image.data()[i] = sums_[i] + glm::max(1.0f - coverage_[i], 0.0f) * background;
+  }
+  counts_.view_samples = view_samples.load();
+  counts_.light_samples = light_samples.load();
+  counts_.write_samples = write_samples.load();
+  if (stats) {
+    stats->samples += counts_.view_samples;
+    stats->rays += std::uint64_t(width) * std::uint64_t(height) * lights_.size();
+  }
+}
+
+std::uint64_t IpsviRenderer::aux_bytes() const {
+  std::uint64_t bytes = cache_.bytes() + early_.bytes();
+  for (const LightCache& lc : lights_) bytes += lc.initial.size() * sizeof(vec2);
+  return bytes;
+}
+
+}  // namespace penumbra
