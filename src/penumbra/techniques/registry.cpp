@@ -13,6 +13,7 @@
 #include "penumbra/techniques/cone_shadows/cone_shadows.h"
 #include "penumbra/techniques/ipsvi/ipsvi.h"
 #include "penumbra/techniques/half_angle/half_angle.h"
+#include "penumbra/techniques/occlusion_map/occlusion_map.h"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -33,6 +34,7 @@ const std::vector<TechniqueInfo>& technique_registry() {
       cone_shadows_info(),
       ipsvi_info(),
       half_angle_info(),
+      occlusion_map_info(),
   };
   return registry;
 }

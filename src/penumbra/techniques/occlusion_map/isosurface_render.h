@@ -1,0 +1,54 @@
+#pragma once
+// The isosurface image loop: one ray per pixel to the first iso crossing (or
+// the nearest opaque plane), shaded by IsosurfaceShader. It mirrors
+// render_image (render_loop.h), which composites DVR samples and so cannot
+// stop at a surface.
+#include "penumbra/base/parallel.h"
+#include "penumbra/render/image.h"
+#include "penumbra/render/render_loop.h"
+#include "penumbra/techniques/occlusion_map/occlusion_shading.h"
+
+#include <atomic>
+
+namespace penumbra {
+
+template <int K, class Sampler>
+PENUMBRA_HD vec4 isosurface_pixel(const IsosurfaceShader<K, Sampler>& shader, const Ray& ray, std::uint64_t& samples) {
+  const RenderView& v = *shader.setup->iso_view;
+  float t_plane = kInfinity;
+  const int plane = nearest_plane(v, ray, kInfinity, t_plane);
+  const Interval interval = volume_interval(v, ray, 0.0f, t_plane);
+  const float t = interval.empty()
+                      ? kInfinity
+                      : first_iso_crossing(v, shader.sampler, ray, interval, shader.setup->iso, samples);
+  if (t < kInfinity) return vec4(shader.surface(ray.at(t), ray.direction), 1.0f);
+  if (plane >= 0) return vec4(shader.plane(PlaneHit{ray.at(t_plane), plane, ray.direction}), 1.0f);
+  return vec4(v.background, 0.0f);
+}
+
+template <int K>
+void render_isosurface_image(const OcclusionShadingSetup<K>& setup, Image& image, RenderStats* stats) {
+  const RenderView& v = *setup.iso_view;
+  if (image.width() != v.width || image.height() != v.height) image = Image(v.width, v.height);
+  std::atomic<std::uint64_t> total_samples{0};
+  with_sampler(v.volume, [&](const auto& sampler) {
+    const IsosurfaceShader<K, std::decay_t<decltype(sampler)>> shader{&setup, sampler};
+    parallel_for_tiles(v.width, v.height, 16, [&](int x0, int y0, int x1, int y1) {
+      std::uint64_t samples = 0;
+      for (int y = y0; y < y1; ++y) {
+        for (int x = x0; x < x1; ++x) {
+          const Ray ray = v.camera.pixel_ray(float(x) + 0.5f, float(y) + 0.5f, v.width, v.height);
+          image.at(x, y) = isosurface_pixel(shader, ray, samples);
+        }
+      }
+      total_samples.fetch_add(samples, std::memory_order_relaxed);
+    });
+    return 0;
+  });
+  if (stats) {
+    stats->samples += total_samples.load();
+    stats->rays += std::uint64_t(v.width) * std::uint64_t(v.height);
+  }
+}
+
+}  // namespace penumbra

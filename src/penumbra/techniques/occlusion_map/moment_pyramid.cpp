@@ -1,0 +1,178 @@
+#include "penumbra/techniques/occlusion_map/moment_pyramid.h"
+
+#include "penumbra/base/error.h"
+#include "penumbra/base/memory_budget.h"
+#include "penumbra/base/parallel.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+
+namespace penumbra {
+namespace {
+
+// out[o][j][i] = sum_t w_t in[o][first_j + t][i]: one axis of a grid seen as
+// `outer` blocks of n_in lines of `inner` floats.
+void resample_axis(const float* in, float* out, std::int64_t outer, std::int64_t inner, const ResamplingTaps& taps) {
+  const std::int64_t n_in = taps.n_in, n_out = taps.n_out;
+  parallel_for(0, outer * n_out, [&](std::int64_t first_item, std::int64_t last_item) {
+    for (std::int64_t item = first_item; item < last_item; ++item) {
+      const std::int64_t o = item / n_out, j = item % n_out;
+      float* dst = out + (o * n_out + j) * inner;
+      std::fill(dst, dst + inner, 0.0f);
+      const int count = taps.count(int(j));
+      for (int t = 0; t < count; ++t) {
+        const float w = taps.weights[std::size_t(taps.begin[std::size_t(j)] + t)];
+        const float* src = in + (o * n_in + taps.first[std::size_t(j)] + t) * inner;
+        for (std::int64_t i = 0; i < inner; ++i) dst[i] += w * src[i];
+      }
+    }
+  }, std::max<std::int64_t>(1, 65536 / std::max<std::int64_t>(inner, 1)));
+}
+
+// The first pass: voxels -> moments of u, resampled along x.
+template <class T>
+void moments_along_x(const T* voxels, ivec3 dims, vec2 range, int moments, const ResamplingTaps& taps, float* out) {
+  const double scale = range.y > range.x ? 1.0 / (double(range.y) - double(range.x)) : 1.0;
+  const std::int64_t rows = std::int64_t(dims.y) * dims.z;
+  parallel_for(0, rows, [&](std::int64_t first_row, std::int64_t last_row) {
+    std::vector<float> u(std::size_t(dims.x));
+    for (std::int64_t r = first_row; r < last_row; ++r) {
+      const T* row = voxels + r * dims.x;
+      for (int x = 0; x < dims.x; ++x) {
+        const double v = double(row[x]);
+        u[std::size_t(x)] = std::isfinite(v) ? float(std::clamp((v - double(range.x)) * scale, 0.0, 1.0)) : 0.0f;
+      }
+      float* dst = out + r * std::int64_t(taps.n_out) * moments;
+      for (int j = 0; j < taps.n_out; ++j) {
+        float acc[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+        const int count = taps.count(j);
+        for (int t = 0; t < count; ++t) {
+          const float w = taps.weights[std::size_t(taps.begin[std::size_t(j)] + t)];
+          const float value = u[std::size_t(taps.first[std::size_t(j)] + t)];
+          float power = value;
+          for (int m = 0; m < moments; ++m) {
+            acc[m] += w * power;
+            power *= value;
+          }
+        }
+        for (int m = 0; m < moments; ++m) dst[j * moments + m] = acc[m];
+      }
+    }
+  }, 16);
+}
+
+std::vector<float> allocate(ivec3 dims, int channels, const char* what) {
+  const std::uint64_t count = checked_product({std::uint64_t(dims.x), std::uint64_t(dims.y), std::uint64_t(dims.z),
+                                               std::uint64_t(channels)});
+  check_memory_budget(what, checked_product({count, sizeof(float)}));
+  return std::vector<float>(std::size_t(count));
+}
+
+}  // namespace
+
+void MomentPyramidSettings::validate() const {
+  if (moments != 2 && moments != 4) {
+    throw InvalidArgument("moments", fmt::format("must be 2 (Chebyshev) or 4 (Hamburger), got {}", moments));
+  }
+  if (!(resolution > 0.0f && resolution <= 1.0f)) {
+    throw InvalidArgument("resolution", fmt::format("must be in (0, 1], got {}", resolution));
+  }
+  if (kernel_size < 3 || kernel_size % 2 == 0) {
+    throw InvalidArgument("kernel_size", fmt::format("must be odd and at least 3, got {}", kernel_size));
+  }
+}
+
+MomentPyramid::MomentPyramid(const VolumeView& volume, vec2 value_range, const MomentPyramidSettings& settings)
+    : settings_(settings), data_dims_(volume.dims), spacing_(volume.spacing), origin_(volume.origin),
+      value_range_(value_range) {
+  settings.validate();
+  if (volume.data == nullptr || glm::any(glm::lessThan(volume.dims, ivec3(1)))) {
+    throw InvalidArgument("volume", "the occlusion map needs a non-empty volume");
+  }
+  const int channels = settings.moments;
+  const float unit = volume.min_spacing();
+
+  // Level geometry: dims and, per axis, the node spacing in world units.
+  ivec3 dims;
+  for (int a = 0; a < 3; ++a) {
+    dims[a] = volume.dims[a] == 1 ? 1 : std::max(2, int(std::lround(double(volume.dims[a]) * settings.resolution)));
+  }
+  for (int k = 0; k < kMaxMomentLevels; ++k) {
+    level_dims_.push_back(dims);
+    if (k >= 3 && dims.x <= 2 && dims.y <= 2 && dims.z <= 2) break;
+    for (int a = 0; a < 3; ++a) dims[a] = dims[a] <= 2 ? dims[a] : (dims[a] + 1) / 2;
+  }
+  auto node_spacing = [&](ivec3 d, int a) {  // world units between nodes of a grid with d nodes
+    return d[a] > 1 ? double(volume.dims[a] - 1) * double(spacing_[a]) / double(d[a] - 1) : double(spacing_[a]);
+  };
+  const double sigma0 = double(settings.kernel_size - 1) / 4.0 * double(unit) / double(settings.resolution);
+
+  // Level 0 from the voxels: x, then y, then z.
+  {
+    const ivec3 d0 = level_dims_[0];
+    std::array<ResamplingTaps, 3> taps;
+    for (int a = 0; a < 3; ++a) {
+      taps[std::size_t(a)] = gaussian_resampling_taps(volume.dims[a], d0[a], sigma0 / double(spacing_[a]));
+    }
+    std::vector<float> along_x = allocate(ivec3(d0.x, volume.dims.y, volume.dims.z), channels, "occlusion map");
+    visit_voxel_type(volume.type, [&](auto tag) {
+      using T = decltype(tag);
+      moments_along_x(static_cast<const T*>(volume.data), volume.dims, value_range, channels, taps[0], along_x.data());
+    });
+    std::vector<float> along_y = allocate(ivec3(d0.x, d0.y, volume.dims.z), channels, "occlusion map");
+    resample_axis(along_x.data(), along_y.data(), volume.dims.z, std::int64_t(d0.x) * channels, taps[1]);
+    along_x = {};
+    std::vector<float> level0 = allocate(d0, channels, "occlusion map");
+    resample_axis(along_y.data(), level0.data(), 1, std::int64_t(d0.x) * d0.y * channels, taps[2]);
+    levels_.push_back(std::move(level0));
+    taps_.push_back(std::move(taps));
+  }
+  // Level k from level k - 1: sigma_k^2 = sigma_(k-1)^2 + sigma_inc^2 with sigma_k = 2 sigma_(k-1).
+  for (std::size_t k = 1; k < level_dims_.size(); ++k) {
+    const ivec3 src = level_dims_[k - 1], dst = level_dims_[k];
+    const double increment = sigma0 * std::sqrt(3.0) * std::exp2(double(k) - 1.0);
+    std::array<ResamplingTaps, 3> taps;
+    for (int a = 0; a < 3; ++a) {
+      taps[std::size_t(a)] = gaussian_resampling_taps(src[a], dst[a], increment / node_spacing(src, a));
+    }
+    std::vector<float> along_x = allocate(ivec3(dst.x, src.y, src.z), channels, "occlusion map");
+    resample_axis(levels_.back().data(), along_x.data(), std::int64_t(src.y) * src.z, channels, taps[0]);
+    std::vector<float> along_y = allocate(ivec3(dst.x, dst.y, src.z), channels, "occlusion map");
+    resample_axis(along_x.data(), along_y.data(), src.z, std::int64_t(dst.x) * channels, taps[1]);
+    along_x = {};
+    std::vector<float> level = allocate(dst, channels, "occlusion map");
+    resample_axis(along_y.data(), level.data(), 1, std::int64_t(dst.x) * dst.y * channels, taps[2]);
+    levels_.push_back(std::move(level));
+    taps_.push_back(std::move(taps));
+  }
+}
+
+float MomentPyramid::sigma_world(int level) const {
+  const double unit = double(std::min(spacing_.x, std::min(spacing_.y, spacing_.z)));
+  return float(double(settings_.kernel_size - 1) / 4.0 * unit / double(settings_.resolution) * std::exp2(level));
+}
+
+float MomentPyramid::normalise(float value) const {
+  const float width = value_range_.y - value_range_.x;
+  return width > 0.0f ? (value - value_range_.x) / width : value - value_range_.x;
+}
+
+std::uint64_t MomentPyramid::bytes() const {
+  std::uint64_t total = 0;
+  for (const auto& l : levels_) total += l.size() * sizeof(float);
+  return total;
+}
+
+std::vector<double> MomentPyramid::effective_weights(int level, int axis) const {
+  std::vector<double> w = dense_weights(taps_[0][std::size_t(axis)]);
+  int rows = taps_[0][std::size_t(axis)].n_out;
+  for (int k = 1; k <= level; ++k) {
+    const ResamplingTaps& t = taps_[std::size_t(k)][std::size_t(axis)];
+    w = compose_weights(dense_weights(t), t.n_out, w, rows, data_dims_[axis]);
+    rows = t.n_out;
+  }
+  return w;
+}
+
+}  // namespace penumbra

@@ -1,0 +1,52 @@
+#pragma once
+// occlusion-map: isosurface rendering with ambient occlusion and soft shadows
+// from filterable occlusion maps (E. Penner, R. Mitchell, "Isosurface Ambient
+// Occlusion and Soft Shadows with Filterable Occlusion Maps", IEEE/EG Volume
+// Graphics 2008). A pyramid of Gaussian-filtered moment volumes of the data
+// (moment_pyramid.h) gives, for any region and any query value, a bound on
+// the fraction of voxels above that value (moment_bounds.h), i.e. the
+// fraction of the region inside the surface. Because the map depends on the
+// data only, the iso-value and the TF change with no recomputation.
+//
+// Parameters
+//   iso_value          the iso-value, normalised to the TF range (0 = range
+//                      min, 1 = range max; the range is the data range unless
+//                      the TF names one), in [0, 1]
+//   mode               iso: isosurface ray casting; dvr: the scene's DVR with
+//                      the same ambient occlusion per sample (Fig. 11), lights
+//                      unshadowed
+//   shadows            none | hard (a ray with the iso test) | soft (a march
+//                      through the occlusion map)
+//   ambient_occlusion  on/off
+//   ao_combine         max (default) | mean of the four levels' occlusion
+//   ao_offset          distance of each level's AO sample from the surface,
+//                      in that level's Gaussian sigmas
+//   ao_lights          AO also darkens the lights (the paper's figures), not
+//                      only the ambient term
+//   light_size_deg     angular radius used for soft shadows of directional and
+//                      point lights (distant, sphere and disk lights use their
+//                      own size)
+//   moments            2 (Chebyshev, the paper) or 4 (Hamburger bound)
+//   resolution         level 0 grid as a fraction of the data grid
+//   kernel_size        taps of level 0's Gaussian at level-0 resolution (odd)
+// Passes
+//   prepare: the moment pyramid, only when the data or the three map
+//            parameters (moments, resolution, kernel_size) change (rebuilds()
+//            counts these builds); a per-macrocell iso flag grid when the
+//            iso-value changes (a few thousand comparisons)
+//   render:  iso: one ray per pixel to the first crossing, refined by binary
+//            search, shaded Blinn-Phong with the central-difference gradient;
+//            AO from four pyramid lookups along the normal; per light a hard
+//            shadow ray or a soft-shadow march. dvr: the shared compositing
+//            loop with the AO per sample.
+// Outside the volume's box nothing occludes: a region reaching past the box
+// counts only its inside share (occlusion_queries.h).
+// Limits: clip planes cut the surface and the hard-shadow rays but not the
+// map (clipped material still occludes in AO and soft shadows).
+#include "penumbra/render/technique.h"
+
+namespace penumbra {
+
+TechniqueInfo occlusion_map_info();
+
+}  // namespace penumbra

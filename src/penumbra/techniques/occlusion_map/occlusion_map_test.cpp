@@ -1,0 +1,372 @@
+// occlusion-map: the isosurface position, ambient occlusion on shapes with a
+// known answer, soft versus hard shadows, the rebuild rules and parameter
+// errors.
+#include "penumbra/analysis/image_metrics.h"
+#include "penumbra/base/error.h"
+#include "penumbra/base/rng.h"
+#include "penumbra/render/scene_resources.h"
+#include "penumbra/techniques/occlusion_map/iso_occupancy.h"
+#include "penumbra/techniques/occlusion_map/isosurface_ray.h"
+#include "penumbra/techniques/occlusion_map/moment_pyramid.h"
+#include "penumbra/techniques/occlusion_map/occlusion_queries.h"
+#include "penumbra/techniques/registry.h"
+#include "test_scene.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <algorithm>
+#include <functional>
+
+namespace penumbra {
+namespace {
+
+using testing::procedural_scene;
+using testing::render_with;
+
+// A float volume of n^3 voxels, spacing 1, centred, from f(world position).
+std::shared_ptr<Volume> field_volume(int n, const std::function<float(vec3)>& f) {
+  auto volume = std::make_shared<Volume>(ivec3(n), VoxelType::Float32);
+  float* v = volume->frame_as<float>(0);
+  const float c = 0.5f * float(n - 1);
+  for (int z = 0; z < n; ++z)
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) *v++ = f(vec3(x, y, z) - c);
+  return volume;
+}
+
+// Antialiased solid: 1 inside, 0 outside, a one-voxel linear ramp across the boundary at signed distance 0.
+float solid(float signed_distance) { return glm::clamp(0.5f - signed_distance, 0.0f, 1.0f); }
+
+// Distance from sphere 0's centre of the first iso crossing on rays aimed at
+// it from 4 voxels outside the analytic surface (v = s at radius r_k (1 - s)).
+std::vector<double> sphere_radius_errors(int n, float iso, const std::vector<vec3>& directions) {
+  Scene scene = procedural_scene("spheres", ivec3(n), 8);
+  SceneResources resources;
+  resources.update(scene);
+  const IsoOccupancy occupancy(resources.macrocells(), iso);
+  const RenderView view = occupancy.apply(resources.view(scene));
+  const float half = 0.5f * float(n - 1);
+  const vec3 centre = kSpheres[0].center * half;
+  const float radius = kSpheres[0].radius * (1.0f - iso) * half;
+  std::vector<double> errors;
+  with_sampler(view.volume, [&](const auto& sampler) {
+    for (const vec3& dir : directions) {
+      const Ray ray{centre + dir * (radius + 4.0f), -dir};
+      std::uint64_t samples = 0;
+      const float t = first_iso_crossing(view, sampler, ray, volume_interval(view, ray, 0.0f, 8.0f), iso, samples);
+      errors.push_back(t < kInfinity ? std::abs(double(glm::length(ray.at(t) - centre)) - double(radius)) : 1e9);
+    }
+    return 0;
+  });
+  return errors;
+}
+
+// At n = 41 sphere 0's centre (-0.35, -0.2, 0.05) is the grid node (13, 16, 21),
+// so along the six axis rays through it the trilinear field is exactly the
+// analytic cone profile: what is left is the binary search, which must land
+// within 1/100 voxel (it halves a half-voxel bracket 12 times: 1e-4 voxel).
+TEST(OcclusionMapIsosurface, BinarySearchFindsTheAnalyticSphereRadius) {
+  const std::vector<vec3> axes = {vec3(1, 0, 0), vec3(-1, 0, 0), vec3(0, 1, 0),
+                                  vec3(0, -1, 0), vec3(0, 0, 1), vec3(0, 0, -1)};
+  for (const float iso : {0.2f, 0.45f, 0.7f}) {
+    const std::vector<double> errors = sphere_radius_errors(41, iso, axes);
+    const double worst = *std::max_element(errors.begin(), errors.end());
+    std::printf("[occlusion-map iso] axis rays, iso %.2f: worst radius error %.6f voxel\n", iso, worst);
+    EXPECT_LT(worst, 0.01) << iso;
+  }
+}
+
+// In other directions trilinear interpolation of the cone profile bends the
+// surface inward by up to h^2 / (4 R) (h^2 / (8 R) per tangential axis, R the
+// radius in voxels): 200 random rays stay within that plus the search.
+TEST(OcclusionMapIsosurface, RandomRaysStayWithinTheInterpolationError) {
+  Pcg32 rng(5);
+  std::vector<vec3> directions;
+  for (int i = 0; i < 200; ++i) {
+    const float cz = 2.0f * rng.next_float() - 1.0f, phi = 6.2831853f * rng.next_float();
+    const float sz = std::sqrt(1.0f - cz * cz);
+    directions.emplace_back(sz * std::cos(phi), sz * std::sin(phi), cz);
+  }
+  const int n = 64;
+  const float iso = 0.2f;
+  const double radius = kSpheres[0].radius * (1.0 - iso) * 0.5 * (n - 1);
+  const std::vector<double> errors = sphere_radius_errors(n, iso, directions);
+  const double worst = *std::max_element(errors.begin(), errors.end());
+  std::printf("[occlusion-map iso] random rays: worst radius error %.4f voxel (bound %.4f)\n", worst,
+              0.25 / radius + 1e-3);
+  EXPECT_LT(worst, 0.25 / radius + 1e-3);
+}
+
+// AO stays in [0, 1] for any point, normal and query, with 2 and 4 moments.
+template <int K> void expect_ambient_in_unit_interval(const MomentPyramid& pyramid, Box3 box) {
+  OcclusionQueries<K> q;
+  q.pyramid = pyramid.view<K>();
+  q.box = box;
+  Pcg32 rng(9);
+  for (int i = 0; i < 2000; ++i) {
+    const vec3 p = glm::mix(box.lower, box.upper, vec3(rng.next_float(), rng.next_float(), rng.next_float()));
+    const vec3 n = glm::normalize(vec3(rng.next_float(), rng.next_float(), rng.next_float()) - 0.5f);
+    const float ao = q.ambient(p, n, rng.next_float());
+    ASSERT_GE(ao, 0.0f);
+    ASSERT_LE(ao, 1.0f);
+  }
+}
+
+// A deep cup (a tube of radii 6..10 over z in [-16, 16], closed by a plate
+// z in [-16, -12]) and a lone ball of radius 8, both 48^3, with the default
+// map (half resolution, 5-tap kernel: sigma0 = 2 voxels, so the four regions
+// have sigma 2, 4, 8, 16 and sit 2 sigma out along the normal).
+TEST(OcclusionMapAmbient, InUnitIntervalUnoccludedOutsideASphereDarkerInsideACup) {
+  const auto ball = field_volume(48, [](vec3 p) { return solid(glm::length(p) - 8.0f); });
+  const auto cup = field_volume(48, [](vec3 p) {
+    const float r = glm::length(vec2(p.x, p.y));
+    const float tube = glm::max(6.0f - r, r - 10.0f);
+    const float plate = glm::max(glm::max(-16.0f - p.z, p.z + 12.0f), r - 10.0f);
+    return solid(glm::max(glm::min(tube, plate), glm::max(-16.0f - p.z, p.z - 16.0f)));
+  });
+  const MomentPyramid ball_map(ball->view(), vec2(0.0f, 1.0f), MomentPyramidSettings{});
+  const MomentPyramid cup_map(cup->view(), vec2(0.0f, 1.0f), MomentPyramidSettings{});
+  expect_ambient_in_unit_interval<2>(cup_map, cup->world_box());
+  const MomentPyramid cup_map4(cup->view(), vec2(0.0f, 1.0f), MomentPyramidSettings{4, 0.5f, 5});
+  expect_ambient_in_unit_interval<4>(cup_map4, cup->world_box());
+
+  // Ball: every surface point, outward normal, query 1 (the core's value, as
+  // the half-voxel-under sample gives). The four regions sit 2 sigma out; a
+  // Gaussian 2 sigma from a plane has 2.3% beyond it, less at a convex surface.
+  OcclusionQueries<2> q;
+  q.pyramid = ball_map.view<2>();
+  q.box = ball->world_box();
+  float least = 1.0f;
+  Pcg32 rng(4);
+  for (int i = 0; i < 200; ++i) {
+    const vec3 n = glm::normalize(vec3(rng.next_float(), rng.next_float(), rng.next_float()) - 0.5f);
+    least = std::min(least, q.ambient(n * 8.0f, n, 1.0f));
+  }
+  std::printf("[occlusion-map ao] ball: least AO on the surface %.4f\n", least);
+  EXPECT_GT(least, 0.95f);
+
+  // Cup: the inside of the bottom (facing up into the tube; truly it sees
+  // the sky through a cone of half-angle atan(6 / 28)) against the outside
+  // of the bottom (facing down, open).
+  q.pyramid = cup_map.view<2>();
+  q.box = cup->world_box();
+  const float inside = q.ambient(vec3(0.0f, 0.0f, -12.0f), vec3(0.0f, 0.0f, 1.0f), 1.0f);
+  const float outside = q.ambient(vec3(0.0f, 0.0f, -16.0f), vec3(0.0f, 0.0f, -1.0f), 1.0f);
+  q.ao_mean = true;
+  const float inside_mean = q.ambient(vec3(0.0f, 0.0f, -12.0f), vec3(0.0f, 0.0f, 1.0f), 1.0f);
+  std::printf("[occlusion-map ao] cup: inside %.4f (mean of levels %.4f), outside %.4f\n", inside, inside_mean,
+              outside);
+  EXPECT_GT(outside, 0.95f);
+  EXPECT_LT(inside, outside - 0.2f);
+  EXPECT_GE(inside_mean, inside);  // the mean of the levels' occlusion is at most their max
+}
+
+// Fig. 7: the occlusion query is the value half a voxel under the surface,
+// not the iso-value. A ball with a 4-voxel ramp (v = 1 at radius 6, 0 at 10)
+// cut at iso 0.1 has its surface on the ramp, where the region in front of a
+// point holds ramp voxels above 0.1 but few above the value under it. Lit by
+// the ambient term alone (1, no lights), a pixel's ratio to the AO-free
+// image is its AO; at the ball's front it must match the query made with the
+// under-surface value (within 0.01: the pixels sample 0.1 voxel around the
+// point), which is clearly lighter than the one with the iso-value.
+TEST(OcclusionMapAmbient, QueryIsTheValueHalfAVoxelUnderTheSurface) {
+  Scene scene = procedural_scene("spheres", ivec3(40), 32);
+  auto ball = field_volume(40, [](vec3 p) { return glm::clamp((10.0f - glm::length(p)) / 4.0f, 0.0f, 1.0f); });
+  scene.set_volume(ball);
+  Material m;
+  m.ambient = 1.0f;
+  scene.set_material(m);
+  scene.set_camera(Camera::framing(Box3{vec3(-10.0f), vec3(10.0f)}, vec3(0.0f, -1.0f, 0.0f)));
+  const ParameterSettings base = {{"iso_value", 0.1}, {"shadows", std::string("none")}};
+  ParameterSettings no_ao = base;
+  no_ao["ambient_occlusion"] = false;
+  const Image with = render_with(scene, "occlusion-map", base);
+  const Image without = render_with(scene, "occlusion-map", no_ao);
+  // The four centre pixels see the ball's front, 0.1 voxel around (0, -9.6, 0).
+  double rendered = 0.0;
+  for (int y = 15; y <= 16; ++y) {
+    for (int x = 15; x <= 16; ++x) {
+      ASSERT_EQ(with.at(x, y).a, 1.0f);
+      rendered += 0.25 * double(with.at(x, y).g / without.at(x, y).g);
+    }
+  }
+  // The same queries by hand at the surface point facing the camera (radius
+  // 9.6: v = 0.1), with t the value half a voxel under it and the iso-value.
+  const MomentPyramid map(ball->view(), vec2(0.0f, 1.0f), MomentPyramidSettings{});
+  OcclusionQueries<2> q;
+  q.pyramid = map.view<2>();
+  q.box = ball->world_box();
+  const vec3 n(0.0f, -1.0f, 0.0f);
+  const float under = q.ambient(9.6f * n, n, 0.1f + 0.5f / 4.0f);
+  const float at_iso = q.ambient(9.6f * n, n, 0.1f);
+  std::printf("[occlusion-map query] rendered AO %.4f; facing point: under-surface query %.4f, iso query %.4f\n",
+              rendered, under, at_iso);
+  EXPECT_GT(under - at_iso, 0.05);
+  EXPECT_NEAR(rendered, under, 0.01);
+}
+
+// A lit scene: two solid balls (one-voxel ramps, so regions are close to
+// two-valued, the case the map is made for) over a floor, a directional
+// light from the side.
+Scene lit_balls(int image_size = 48) {
+  Scene scene = procedural_scene("spheres", ivec3(48), image_size);
+  scene.set_volume(field_volume(48, [](vec3 p) {
+    return glm::max(solid(glm::length(p - vec3(-7.0f, 0.0f, 6.0f)) - 8.0f),
+                    solid(glm::length(p - vec3(10.0f, 4.0f, -4.0f)) - 6.0f));
+  }));
+  Light light;
+  light.direction = glm::normalize(vec3(0.6f, 0.3f, -1.0f));
+  scene.set_lights({light});
+  Material m;
+  m.ambient = 0.3f;
+  scene.set_material(m);
+  scene.set_planes({Plane{vec3(0.0f, 0.0f, -26.0f), vec3(0.0f, 0.0f, 1.0f), vec3(0.8f)}});
+  // Framing the balls' region rather than the box keeps them large in a small image.
+  scene.set_camera(Camera::framing(Box3{vec3(-18.0f, -12.0f, -26.0f), vec3(18.0f, 12.0f, 14.0f)}, vec3(0.3f, -1.0f, 0.6f)));
+  return scene;
+}
+
+// AO only darkens (it scales light, never adds), in iso and DVR mode; and the
+// iso image shows both the surface and the opaque floor.
+TEST(OcclusionMapRender, AmbientOcclusionOnlyDarkens) {
+  const Scene scene = lit_balls();
+  for (const char* mode : {"iso", "dvr"}) {
+    const Image off = render_with(scene, "occlusion-map",
+                                  {{"mode", std::string(mode)}, {"shadows", std::string("none")},
+                                   {"ambient_occlusion", false}, {"iso_value", 0.5}});
+    const Image on = render_with(scene, "occlusion-map",
+                                 {{"mode", std::string(mode)}, {"shadows", std::string("none")}, {"iso_value", 0.5}});
+    double darker = 0.0;
+    for (int y = 0; y < on.height(); ++y) {
+      for (int x = 0; x < on.width(); ++x) {
+        for (int c = 0; c < 3; ++c) ASSERT_LE(on.at(x, y)[c], off.at(x, y)[c] + 1e-5f) << mode << x << "," << y;
+        darker += double(off.at(x, y).r - on.at(x, y).r);
+      }
+    }
+    EXPECT_GT(darker / (on.width() * on.height()), 1e-3) << mode;
+  }
+}
+
+// Floor pixels in full shadow: without AO a shadowed floor pixel is exactly
+// the ambient 0.8 * 0.3 = 0.24, a value no surface pixel takes (white
+// surface: 0.3 and up) but by rare coincidence; a lit one 0.8 (0.3 + cos).
+int pixels_at(const Image& image, float value) {
+  int n = 0;
+  for (int y = 0; y < image.height(); ++y)
+    for (int x = 0; x < image.width(); ++x) n += std::abs(image.at(x, y).g - value) < 1e-4f ? 1 : 0;
+  return n;
+}
+constexpr float kUmbraValue = 0.8f * 0.3f;
+
+// The opaque floor is drawn and shadowed.
+TEST(OcclusionMapRender, OpaquePlanesAreDrawnAndShadowed) {
+  const Scene scene = lit_balls(64);
+  const float lit = 0.8f * (0.3f + 1.0f / glm::length(vec3(0.6f, 0.3f, -1.0f)));
+  for (const char* shadows : {"none", "hard", "soft"}) {
+    const Image image = render_with(scene, "occlusion-map", {{"shadows", std::string(shadows)},
+                                                             {"ambient_occlusion", false}, {"iso_value", 0.5}});
+    const int lit_pixels = pixels_at(image, lit), umbra = pixels_at(image, kUmbraValue);
+    std::printf("[occlusion-map planes] shadows %s: %d lit floor pixels, %d in full shadow\n", shadows, lit_pixels,
+                umbra);
+    EXPECT_GT(lit_pixels, 1000) << shadows;
+    if (std::string(shadows) == "none") {
+      EXPECT_LE(umbra, 2);
+    } else {
+      EXPECT_GT(umbra, 50) << shadows;
+    }
+  }
+}
+
+// Soft shadows approach hard ones as the light shrinks: the image difference
+// falls and the umbra (floor pixels in full shadow) grows toward the hard
+// shadow's, monotonically. The map's finest region (sigma0 = 0.5 voxel at
+// full resolution with a 3-tap kernel) and Chebyshev's tail keep a band about
+// a voxel wide at the shadow's edge even at zero size, which is what remains.
+TEST(OcclusionMapRender, SoftShadowsApproachHardShadowsAsTheLightShrinks) {
+  const Scene scene = lit_balls(64);
+  const ParameterSettings common = {{"ambient_occlusion", false}, {"iso_value", 0.5}, {"resolution", 1.0},
+                                    {"kernel_size", 3.0}};
+  auto with = [&](ParameterSettings extra) {
+    ParameterSettings all = common;
+    for (const auto& [name, value] : extra) all[name] = value;
+    return render_with(scene, "occlusion-map", all);
+  };
+  const Image hard = with({{"shadows", std::string("hard")}});
+  const Image none = with({{"shadows", std::string("none")}});
+  const int hard_umbra = pixels_at(hard, kUmbraValue);
+  double previous_rmse = 1e9, first_rmse = 0.0, last_rmse = 0.0;
+  int previous_umbra = -1, last_umbra = 0;
+  for (const double size : {16.0, 8.0, 4.0, 1.0, 0.0}) {
+    const Image soft = with({{"shadows", std::string("soft")}, {"light_size_deg", size}});
+    const double d = rmse(soft, hard);
+    const int umbra = pixels_at(soft, kUmbraValue);
+    std::printf("[occlusion-map soft] light %4.1f deg: rmse to hard %.4f, umbra %d pixels (hard %d)\n", size, d,
+                umbra, hard_umbra);
+    EXPECT_LE(d, previous_rmse + 1e-4) << size;
+    EXPECT_GE(umbra, previous_umbra) << size;
+    if (size == 16.0) first_rmse = d;
+    previous_rmse = last_rmse = d;
+    previous_umbra = last_umbra = umbra;
+  }
+  const double shadow = rmse(none, hard);
+  std::printf("[occlusion-map soft] rmse unshadowed to hard %.4f\n", shadow);
+  EXPECT_LT(last_rmse, 0.6 * first_rmse);
+  EXPECT_LT(last_rmse, 0.4 * shadow);
+  EXPECT_GT(last_umbra, 0.85 * hard_umbra);
+  EXPECT_LE(last_umbra, hard_umbra + 2);
+}
+
+// The map depends on the data only: iso-value and TF changes rebuild nothing;
+// the data and the map's own parameters do.
+TEST(OcclusionMapTechnique, RebuildsOnlyForDataAndMapParameters) {
+  Scene scene = procedural_scene("spheres", ivec3(32), 16);
+  const TechniqueInfo& info = find_technique("occlusion-map");
+  ParameterValues params(info.parameters);
+  auto technique = info.create();
+  Image image;
+  technique->prepare(scene, params);
+  technique->render(scene, image);
+  EXPECT_EQ(technique->rebuilds(), 1u);
+  // Level 0 at 16^3 with 2 float moments, and smaller levels.
+  EXPECT_GE(technique->aux_bytes(), 16u * 16u * 16u * 2u * 4u);
+
+  params.set("iso_value", 0.7);
+  technique->prepare(scene, params);
+  scene.set_transfer_function(testing::step_tf(0.2f, vec3(1.0f, 0.5f, 0.2f), 0.5f));
+  technique->prepare(scene, params);
+  params.set("shadows", std::string("hard"));
+  params.set("ao_combine", std::string("mean"));
+  technique->prepare(scene, params);
+  technique->render(scene, image);
+  EXPECT_EQ(technique->rebuilds(), 1u);
+
+  params.set("moments", 4.0);
+  technique->prepare(scene, params);
+  EXPECT_EQ(technique->rebuilds(), 2u);
+  scene.set_volume(make_procedural_volume("shell", ivec3(32)));
+  technique->prepare(scene, params);
+  EXPECT_EQ(technique->rebuilds(), 3u);
+  technique->render(scene, image);
+}
+
+TEST(OcclusionMapTechnique, BadParametersNameTheParameter) {
+  const Scene scene = procedural_scene("spheres", ivec3(16), 8);
+  auto expect_named = [&](const char* name, const ParameterValue& value) {
+    try {
+      render_with(scene, "occlusion-map", {{name, value}});
+      ADD_FAILURE() << "no error for " << name;
+    } catch (const InvalidArgument& e) {
+      EXPECT_EQ(e.name(), name) << e.what();
+    }
+  };
+  expect_named("iso_value", 1.5);
+  expect_named("iso_value", -0.1);
+  expect_named("moments", 3.0);
+  expect_named("kernel_size", 4.0);
+  expect_named("resolution", 0.0);
+  expect_named("shadows", std::string("ray"));
+}
+
+}  // namespace
+}  // namespace penumbra

@@ -1,0 +1,144 @@
+#pragma once
+// How occlusion-map points are lit. The shared ScatteringLighting does the
+// Blinn-Phong (or phase) shading and the planes; the occlusion map supplies
+// the light visibility (hard or soft shadows, optionally times the ambient
+// occlusion: the paper's figures darken the direct light by it too) and scales
+// the ambient term by the ambient occlusion (the scene's `ambient` stands for
+// the uniform sky light that ambient occlusion is about). The lighting
+// therefore runs on a view whose material has ambient 0, and the occluded
+// ambient is added here.
+#include "penumbra/render/lighting.h"
+#include "penumbra/techniques/occlusion_map/isosurface_ray.h"
+#include "penumbra/techniques/occlusion_map/occlusion_queries.h"
+
+namespace penumbra {
+
+enum class ShadowMode : std::uint8_t { None, Hard, Soft };
+
+// Normalises data values the way the pyramid was built (u in [0, 1]).
+struct ValueNormalisation {
+  float lo = 0.0f;
+  float scale = 1.0f;
+  PENUMBRA_HD float operator()(float value) const { return (value - lo) * scale; }
+};
+
+// Everything the per-point shading reads, shared by every pixel.
+template <int K> struct OcclusionShadingSetup {
+  const RenderView* lit_view = nullptr;  // the scene's view with ambient 0
+  const RenderView* iso_view = nullptr;  // IsoOccupancy view, for iso rays and hard shadows
+  OcclusionQueries<K> queries;
+  ValueNormalisation normalise;
+  float iso = 0.0f;      // data units
+  vec3 iso_color{1.0f};  // TF colour at the iso-value
+  float ambient = 0.0f;  // the scene's ambient term
+  ShadowMode shadows = ShadowMode::Soft;
+  bool ambient_occlusion = true;
+  bool ao_on_lights = true;
+};
+
+// Per-light visibility of one surface or plane point.
+template <int K, class Sampler> struct SurfaceVisibility {
+  const OcclusionShadingSetup<K>* setup;
+  Sampler sampler;
+  vec3 normal;        // unit, pointing away from the occluding side
+  float query;        // normalised occlusion query value t
+  float ambient_occ;  // multiplies every light (1 when AO darkens only the ambient term)
+
+  PENUMBRA_HD vec3 operator()(int light, vec3 p, const LightSample& ls) const {
+    const OcclusionShadingSetup<K>& s = *setup;
+    float visible = ambient_occ;
+    if (s.shadows == ShadowMode::Hard) {
+      // One voxel off the surface, so the ray does not find the surface it leaves.
+      const vec3 start = p + normal * s.iso_view->volume.min_spacing();
+      if (iso_blocks(*s.iso_view, sampler, Ray{start, ls.to_light}, ls.distance, s.iso)) return vec3(0.0f);
+    } else if (s.shadows == ShadowMode::Soft) {
+      const float spread = s.queries.light_spread(s.iso_view->lights[light], p);
+      visible *= s.queries.soft_shadow(p, normal, ls.to_light, ls.distance, spread, query);
+    }
+    return vec3(visible);
+  }
+};
+
+struct UniformVisibility {
+  float value = 1.0f;
+  PENUMBRA_HD vec3 operator()(int, vec3, const LightSample&) const { return vec3(value); }
+};
+
+// Shading of isosurface hits and plane hits (isosurface mode).
+template <int K, class Sampler> struct IsosurfaceShader {
+  const OcclusionShadingSetup<K>* setup;
+  Sampler sampler;
+
+  // Outward unit normal at a surface point from the central-difference
+  // gradient (toward lower values), facing the viewer.
+  PENUMBRA_HD vec3 surface_normal(vec3 index, vec3 ray_dir) const {
+    const VolumeView& volume = setup->iso_view->volume;
+    const vec3 g = sampler.gradient(index) / volume.spacing;
+    const float length = glm::length(g);
+    vec3 n = length > 0.0f && is_finite(length) ? -g / length : -ray_dir;
+    if (glm::dot(n, ray_dir) > 0.0f) n = -n;
+    return n;
+  }
+
+  PENUMBRA_HD vec3 surface(vec3 p, vec3 ray_dir) const {
+    const OcclusionShadingSetup<K>& s = *setup;
+    const VolumeView& volume = s.iso_view->volume;
+    const vec3 index = volume.index_from_world(p);
+    const vec3 n = surface_normal(index, ray_dir);
+    // The query value: half a voxel under the surface (Fig. 7), at least the iso-value.
+    const float under = sampler(volume.index_from_world(p - n * (0.5f * volume.min_spacing())));
+    const float query = s.normalise(glm::max(s.iso, is_finite(under) ? under : s.iso));
+    const float ao = s.ambient_occlusion ? s.queries.ambient(p, n, query) : 1.0f;
+    using Visibility = SurfaceVisibility<K, Sampler>;
+    const ScatteringLighting<Visibility> lighting{
+        s.lit_view, Visibility{setup, sampler, n, query, s.ao_on_lights ? ao : 1.0f}, Shading::Phong};
+    const SamplePoint sample{p, index, s.iso, s.iso_color, 0.0f, ray_dir};
+    return lighting.sample(sample) + s.lit_view->material.albedo * s.iso_color * (s.ambient * ao);
+  }
+
+  PENUMBRA_HD vec3 plane(const PlaneHit& h) const {
+    const OcclusionShadingSetup<K>& s = *setup;
+    const Plane& plane = s.lit_view->planes[h.plane];
+    const vec3 facing = glm::normalize(glm::dot(plane.normal, h.ray_dir) < 0.0f ? plane.normal : -plane.normal);
+    const float query = s.normalise(s.iso);
+    const float ao = s.ambient_occlusion ? s.queries.ambient(h.position, facing, query) : 1.0f;
+    using Visibility = SurfaceVisibility<K, Sampler>;
+    const ScatteringLighting<Visibility> lighting{
+        s.lit_view, Visibility{setup, sampler, facing, query, s.ao_on_lights ? ao : 1.0f}, Shading::Phong};
+    return lighting.plane(h) + plane.color * (s.ambient * ao);
+  }
+};
+
+// DVR mode (Fig. 11): the same ambient occlusion for every DVR sample, with
+// the sample's value half a voxel up its gradient as the query; the lights
+// are unshadowed (local lighting), as in the paper's figure.
+template <int K, class Sampler> struct DvrOcclusionLighting {
+  const OcclusionShadingSetup<K>* setup;
+  Sampler sampler;
+  Shading shading;
+
+  PENUMBRA_HD float ambient_at(const SamplePoint& p) const {
+    const OcclusionShadingSetup<K>& s = *setup;
+    if (!s.ambient_occlusion) return 1.0f;
+    const VolumeView& volume = s.lit_view->volume;
+    const vec3 g = sampler.gradient(p.index) / volume.spacing;
+    const float length = glm::length(g);
+    if (!(length > 0.0f) || !is_finite(length)) return 1.0f;  // homogeneous: no direction to look in
+    const vec3 n = -g / length;
+    const float under = sampler(volume.index_from_world(p.world - n * (0.5f * volume.min_spacing())));
+    const float query = s.normalise(glm::max(p.value, is_finite(under) ? under : p.value));
+    return s.queries.ambient(p.world, n, query);
+  }
+
+  PENUMBRA_HD vec3 sample(const SamplePoint& p) const {
+    const OcclusionShadingSetup<K>& s = *setup;
+    const float ao = ambient_at(p);
+    const ScatteringLighting<UniformVisibility> lighting{s.lit_view, UniformVisibility{s.ao_on_lights ? ao : 1.0f},
+                                                         shading};
+    return lighting.sample(p) + s.lit_view->material.albedo * p.color * (s.ambient * ao);
+  }
+
+  PENUMBRA_HD vec3 plane(const PlaneHit& h) const { return IsosurfaceShader<K, Sampler>{setup, sampler}.plane(h); }
+};
+
+}  // namespace penumbra
