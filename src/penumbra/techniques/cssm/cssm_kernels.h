@@ -26,7 +26,8 @@ namespace penumbra {
 
 // The random stream of one texel of one light's map for a seed.
 PENUMBRA_HD inline Pcg32 cssm_texel_rng(std::uint32_t seed, int light, std::int64_t texel) {
-  const std::uint64_t key = mix_bits(mix_bits((std::uint64_t(seed) << 20) ^ std::uint64_t(light)) + std::uint64_t(texel));
+  const std::uint64_t key =
+      mix_bits(mix_bits((std::uint64_t(seed) << 20) ^ std::uint64_t(light)) + std::uint64_t(texel));
   return Pcg32(key, mix_bits(key ^ 0x9e3779b97f4a7c15ULL));
 }
 

@@ -42,7 +42,8 @@ TEST(Cssm, VisibilityIsUnbiasedPerChannel) {
   const LightProjection p = make_light_projection(light, v.box, n);
   Pcg32 rng(17);
   std::vector<vec3> points;
-  for (int i = 0; i < 40; ++i) points.push_back(v.box.lower + vec3(rng.next_float(), rng.next_float(), rng.next_float()) * v.box.extent());
+  for (int i = 0; i < 40; ++i)
+    points.push_back(v.box.lower + vec3(rng.next_float(), rng.next_float(), rng.next_float()) * v.box.extent());
   const int seeds = 300;
   std::vector<dvec3> sum(points.size(), dvec3(0.0)), sum_sq(points.size(), dvec3(0.0));
   for (int seed = 0; seed < seeds; ++seed) {
@@ -77,7 +78,8 @@ TEST(Cssm, VisibilityIsUnbiasedPerChannel) {
       partial += expected[c] > 0.05f && expected[c] < 0.95f;
     }
   }
-  printf("TMP cssm worst z %.2f partial %d\n", worst_z, partial);
+  std::printf("[cssm] unbiased: worst |mean - expected| = %.2f standard errors; %d partly lit channels\n", worst_z,
+              partial);
   EXPECT_GT(partial, 20) << "the test should probe partly shadowed samples";
 }
 

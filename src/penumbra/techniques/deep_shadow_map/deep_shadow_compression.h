@@ -25,7 +25,16 @@
 // keeps the smallest that fits in N nodes: the stored function is within
 // that tolerance of the raw one. If none fits, the largest keeps its last
 // node sliding to the end of the function (the error is then unbounded in
-// its last piece, but the tail value is exact). The levels are updated
+// its last piece, but the tail value is exact).
+//
+// The tail is made exact for the level kept: a raised tolerance let the
+// value after the last node drift by up to 0.32, and that value is what
+// every receiver behind the volume reads (a floor under a translucent shell
+// around an opaque core got a grey shadow instead of a black one). When the
+// kept nodes' tail differs from the function's last value by more than the
+// base tolerance, a node with the exact value is added at the end (or the
+// last node's value replaced when all N are used); the bound reported grows
+// by that change. The levels are updated
 // together, lane by lane in fixed-size arrays that the compiler vectorises;
 // only node placements (rare) take a per-level branch.
 #include "penumbra/base/math.h"
@@ -115,7 +124,9 @@ class DeepShadowCompressor {
     for (int l = kLevels - 1; l >= 0; --l) {
       if (state_[l] != kOverflowed) chosen = l;
     }
-    return DeepShadowNodes{nodes_[chosen], count_[chosen], tolerance_[chosen], state_[chosen] == kOverflowed};
+    const bool overflowed = state_[chosen] == kOverflowed;
+    const float tolerance = overflowed ? tolerance_[chosen] : tolerance_[chosen] + exact_tail(chosen);
+    return DeepShadowNodes{nodes_[chosen], count_[chosen], tolerance, overflowed};
   }
 
  private:
@@ -172,6 +183,30 @@ class DeepShadowCompressor {
       near &= glm::abs(delta) <= tolerance_[l];
     }
     flat_[l] = near;
+  }
+
+  // Makes the stored tail (the value after the last node) the raw function's
+  // last value when they differ by more than the base tolerance, by adding a
+  // node at the end or, with none left, moving the last node's value; returns
+  // the change, which the error bound grows by (the approximation moves by at
+  // most that much on the last piece and after it).
+  PENUMBRA_HD float exact_tail(int l) {
+    DeepShadowNode* nodes = nodes_[l];
+    int& count = count_[l];
+    const vec3 stored = count > 0 ? nodes[count - 1].transmittance : vec3(1.0f);
+    const float change = max_component(glm::abs(last_value_ - stored));
+    if (!(change > tolerance_[0])) return 0.0f;
+    if (count == 0) {
+      if (capacity_ < 2) return 0.0f;
+      // Keep the function 1 in front of the attenuation (a lone node would make it constant).
+      nodes[count++] = DeepShadowNode{waiting_depth_[l], vec3(1.0f)};
+    }
+    if (count < capacity_ && last_depth_ > nodes[count - 1].depth) {
+      nodes[count++] = DeepShadowNode{last_depth_, last_value_};
+    } else {
+      nodes[count - 1].transmittance = last_value_;
+    }
+    return change;
   }
 
   PENUMBRA_HD void overflow(int l, float z, vec3 value) {

@@ -1,7 +1,7 @@
 // The deep shadow map's compression against brute force: the stored nodes
 // stay within the tolerance they report at every breakpoint of random
-// transmittance functions, simple shapes take the nodes they should, and
-// more nodes never give a looser bound.
+// transmittance functions, simple shapes take the nodes they should, more
+// nodes never need a looser tolerance, and the tail is exact.
 #include "penumbra/base/rng.h"
 #include "penumbra/techniques/deep_shadow_map/deep_shadow_compression.h"
 
@@ -80,7 +80,10 @@ TEST(DeepShadowCompression, NodesStayWithinTheToleranceTheyReport) {
       const float bound = c.tolerance;
       // Both functions are linear between breakpoints, so the breakpoints bound the error everywhere.
       ASSERT_LE(max_error(f, c), bound * (1.0f + 1e-4f) + 1e-6f) << "trial " << trial << ", " << nodes << " nodes";
-      EXPECT_LE(bound, previous_bound) << "more nodes must not loosen the bound";
+      // More nodes never need a larger level; the bound is the level's tolerance plus the tail's change, which
+      // is at most that tolerance, so it can grow by at most 2x (the tail fix trades a little bound for an
+      // exact tail).
+      EXPECT_LE(bound, 2.0f * previous_bound) << "more nodes must not loosen the bound beyond the tail's change";
       previous_bound = bound;
       if (nodes == 16 && bound == 0.01f) ++fitted_at_base;
     }
@@ -120,6 +123,33 @@ TEST(DeepShadowCompression, SimpleShapesTakeFewNodes) {
     EXPECT_EQ(c.tolerance, 0.001f);
     EXPECT_EQ(c.count, 2);
   }
+}
+
+// A translucent shell around an opaque core (the ray of scenes/shell-point
+// through the core): a smooth drop, a flat gap, a sharp drop to 0. Three
+// nodes cannot follow it within 0.01, so the tolerance is raised; the tail,
+// which a floor behind the volume reads, still comes out exactly 0 (it was
+// 0.115 before the tail was made exact) and the reported bound covers the
+// whole function.
+TEST(DeepShadowCompression, TailIsExactWhenTheToleranceIsRaised) {
+  std::vector<Breakpoint> f;
+  for (int i = 0; i <= 20; ++i) f.push_back({float(i), vec3(1.0f)});
+  float t = 1.0f;
+  for (int i = 1; i <= 20; ++i) {
+    t *= 0.959f;  // 0.43 after 20 steps
+    f.push_back({20.0f + 0.5f * float(i), vec3(t)});
+  }
+  for (int i = 1; i <= 24; ++i) f.push_back({30.0f + 0.5f * float(i), vec3(t)});
+  f.push_back({42.5f, vec3(0.0f)});
+  for (int i = 1; i <= 10; ++i) f.push_back({42.5f + float(i), vec3(0.0f)});
+  DeepShadowCompressor compressor(0.01f, 3);
+  const DeepShadowNodes c = compress(compressor, f);
+  ASSERT_FALSE(c.overflowed);
+  EXPECT_GT(c.tolerance, 0.05f) << "three nodes should not fit this function closely";
+  EXPECT_LE(c.count, 3);
+  EXPECT_NEAR(max_component(evaluate(c, 1e6f)), 0.0f, 1e-6f);
+  EXPECT_LE(max_error(f, c), c.tolerance * (1.0f + 1e-4f) + 1e-6f);
+  EXPECT_NEAR(max_component(evaluate(c, 5.0f)), 1.0f, 1e-6f) << "in front of the attenuation: lit";
 }
 
 // When nothing fits, the last level slides its last node to the end, so the

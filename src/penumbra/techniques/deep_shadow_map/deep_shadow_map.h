@@ -12,7 +12,9 @@
 //   resolution  map texels per side (half per cube face), 256..4096
 //   nodes       nodes per texel, 2..16 (4 floats each)
 //   tolerance   compression error bound; raised per texel (in steps of
-//               1.64x, up to 32x) until the function fits in `nodes`
+//               1.64x, up to 32x) until the function fits in `nodes`; the
+//               value behind the last node (what receivers behind the
+//               volume read) is kept exact
 //   colored     transport colour: shadows take the TF colour of what they
 //               pass through (false: grey, the shadow-rays transmittance)
 //   filter      nearest texel, or bilinear over the four nearest texels

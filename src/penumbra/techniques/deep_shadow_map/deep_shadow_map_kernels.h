@@ -80,7 +80,8 @@ struct DeepShadowVisibility {
     const vec2 base = glm::floor(c);
     const vec2 f = c - base;
     const int x = int(base.x), y = int(base.y);
-    const vec3 top = glm::mix(texel_value(map, q.face, x, y, q.depth), texel_value(map, q.face, x + 1, y, q.depth), f.x);
+    const vec3 top =
+        glm::mix(texel_value(map, q.face, x, y, q.depth), texel_value(map, q.face, x + 1, y, q.depth), f.x);
     const vec3 bottom =
         glm::mix(texel_value(map, q.face, x, y + 1, q.depth), texel_value(map, q.face, x + 1, y + 1, q.depth), f.x);
     return glm::mix(top, bottom, f.y);

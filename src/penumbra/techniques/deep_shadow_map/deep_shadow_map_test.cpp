@@ -60,13 +60,15 @@ TEST(DeepShadowMap, ErrorIsBoundedByTheCompressionTolerance) {
         ++texels;
         at_base += bound == 0.01f;
         for (float z = chord.t0 - 1.0f; z < chord.t1 + 1.0f; z += 0.1f) {
-          const vec3 error = glm::abs(evaluate_deep_shadow(texel.data(), nodes, z) - reference_transmittance(v, ray, z, true));
+          const vec3 error =
+              glm::abs(evaluate_deep_shadow(texel.data(), nodes, z) - reference_transmittance(v, ray, z, true));
           worst = std::max(worst, max_component(error) - bound);
           ASSERT_LE(max_component(error), bound + 2e-4f) << "texel " << x << ", " << y << " depth " << z;
         }
       }
     }
-    printf("TMP dsm bound nodes %d texels %d at_base %d worst-over-bound %.2e\n", nodes, texels, at_base, worst);
+    std::printf("[deep-shadow-map] %d nodes: %d of %d texels at the base tolerance, worst excess %.2e\n", nodes,
+                at_base, texels, worst);
     EXPECT_GT(texels, 100);
     // With 8 nodes nearly every ray meets the base tolerance; with 3 many do.
     EXPECT_GT(at_base, nodes == 8 ? texels * 9 / 10 : texels / 3) << nodes << " nodes";
@@ -84,7 +86,8 @@ TEST(DeepShadowMap, ConvergesToTheRayMarchedTransmittanceWithMoreNodes) {
   const LightProjection p = make_light_projection(light, v.box, 256);
   Pcg32 rng(9);
   std::vector<vec3> points;
-  for (int i = 0; i < 400; ++i) points.push_back(v.box.lower + vec3(rng.next_float(), rng.next_float(), rng.next_float()) * v.box.extent());
+  for (int i = 0; i < 400; ++i)
+    points.push_back(v.box.lower + vec3(rng.next_float(), rng.next_float(), rng.next_float()) * v.box.extent());
   float previous = kInfinity;
   for (int nodes : {2, 3, 6, 16}) {
     const LightMap map = build_deep_shadow_map(v, p, nodes, 0.002f, true);
@@ -102,7 +105,7 @@ TEST(DeepShadowMap, ConvergesToTheRayMarchedTransmittanceWithMoreNodes) {
       worst = std::max(worst, error);
     }
     const float mean = float(sum / double(points.size()));
-    printf("TMP dsm converge nodes %d mean %.5f worst %.5f\n", nodes, mean, worst);
+    std::printf("[deep-shadow-map] %d nodes: error mean %.5f, worst %.5f\n", nodes, mean, worst);
     EXPECT_LE(mean, previous + 1e-4f) << nodes << " nodes";
     previous = mean;
     if (nodes == 16) {
@@ -137,7 +140,7 @@ TEST(DeepShadowMap, GreyLookupsMatchShadowRays) {
     EXPECT_NEAR(got.r, expected, 0.03f);
     sum += std::abs(got.r - expected);
   }
-  printf("TMP dsm vs rays mean %.5f\n", sum / 400.0);
+  std::printf("[deep-shadow-map] grey vs shadow-rays: mean error %.5f\n", sum / 400.0);
   EXPECT_LT(sum / 400.0, 0.005);
 }
 

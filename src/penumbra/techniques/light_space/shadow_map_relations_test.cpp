@@ -85,7 +85,9 @@ TEST(ShadowMapRelations, AllAgreeWithShadowRaysOnAnOpaqueOccluder) {
     for (const char* name : kShadowMaps) {
       SCOPED_TRACE(std::string(name) + (light.type == LightType::Point ? " point" : " directional"));
       const Image image = render_with(scene, name);
-      printf("TMP agree %s %d frac %.4f mae %.5f\n", name, int(light.type), fraction_differing(image, reference, 0.05f), mean_absolute_error(image, reference));
+      std::printf("[shadow maps] opaque edge, %s, %s light: %.4f of pixels differ, mean error %.5f\n", name,
+                  light.type == LightType::Point ? "point" : "directional", fraction_differing(image, reference, 0.05f),
+                  mean_absolute_error(image, reference));
       EXPECT_LT(fraction_differing(image, reference, 0.05f), 0.04);
       EXPECT_LT(mean_absolute_error(image, reference), 0.01);
     }
@@ -104,7 +106,7 @@ TEST(ShadowMapRelations, GreyOccluderGivesGreyShadows) {
       ASSERT_NEAR(p.r, p.g, 1e-5f);
       ASSERT_NEAR(p.g, p.b, 1e-5f);
     }
-    printf("TMP grey %s maxdiff %.3f\n", name, max_abs_error(image, unshadowed));
+    std::printf("[shadow maps] grey occluder, %s: largest darkening %.3f\n", name, max_abs_error(image, unshadowed));
     EXPECT_GT(max_abs_error(image, unshadowed), 0.2) << "no shadow";
   }
 }
@@ -146,7 +148,8 @@ TEST(ShadowMapRelations, RedTranslucentShellTintsTheFloorShadow) {
   };
   for (const char* name : {"deep-shadow-map", "cssm"}) {
     const vec3 coloured = mean_rgb(render_with(scene, name));
-    printf("TMP shell %s rgb %.4f %.4f %.4f lit %.4f n %zu\n", name, coloured.r, coloured.g, coloured.b, lit, shell_shadow.size());
+    std::printf("[shadow maps] red shell, %s: shadow rgb %.3f %.3f %.3f (unshadowed %.3f) over %zu pixels\n", name,
+                coloured.r, coloured.g, coloured.b, lit, shell_shadow.size());
     EXPECT_GT(coloured.r, 2.0f * coloured.g) << name;
     EXPECT_GT(coloured.r, 0.8f * lit) << name << ": red passes the red shell";
     const vec3 grey = mean_rgb(render_with(scene, name, {{"colored", false}}));
@@ -184,7 +187,7 @@ TEST(ShadowMapRelations, EveryLightHasItsOwnMap) {
     const Image image_b = render_with(only_b, name);
     Image sum = image_a;
     for (std::size_t i = 0; i < sum.pixel_count(); ++i) sum.data()[i] += image_b.data()[i];
-    printf("TMP lights %s rmse %.3g\n", name, rmse(sum_ab, sum));
+    std::printf("[shadow maps] two lights, %s: rmse to the sum of single-light images %.3g\n", name, rmse(sum_ab, sum));
     EXPECT_LT(rmse(sum_ab, sum), std::string(name) == "cssm" ? 0.02 : 1e-5) << name;
   }
 }
@@ -202,7 +205,7 @@ TEST(ShadowMapRelations, PointLightInsideTheVolumeUsesACubeMap) {
   const Image reference = render_with(scene, "shadow-rays");
   const Image deep = render_with(scene, "deep-shadow-map",
                                  {{"nodes", 16.0}, {"tolerance", 0.002}, {"colored", false}, {"filter", "bilinear"}});
-  printf("TMP cube rmse %.4g\n", rmse(deep, reference));
+  std::printf("[shadow maps] cube map, grey deep shadow map vs shadow-rays: rmse %.4g\n", rmse(deep, reference));
   EXPECT_LT(rmse(deep, reference), 0.01);
   const TechniqueInfo& info = find_technique("deep-shadow-map");
   auto t = info.create();

@@ -32,7 +32,8 @@ PENUMBRA_HD float shadow_map_depth(const RenderView& v, const Sampler& sampler, 
 inline LightMap build_shadow_map(const RenderView& v, const LightProjection& p, float threshold) {
   LightMap map("shadow map", p, 1);
   with_sampler(v.volume, [&](const auto& sampler) {
-    map.fill([&](const Ray& ray, std::int64_t, float* texel) { texel[0] = shadow_map_depth(v, sampler, ray, threshold); });
+    map.fill(
+        [&](const Ray& ray, std::int64_t, float* texel) { texel[0] = shadow_map_depth(v, sampler, ray, threshold); });
     return 0;
   });
   return map;
@@ -60,7 +61,8 @@ struct ShadowMapVisibility {
     const int y = int(glm::floor(q.texel.y));
     float lit = 0.0f;
     for (int dy = -pcf_radius; dy <= pcf_radius; ++dy) {
-      for (int dx = -pcf_radius; dx <= pcf_radius; ++dx) lit += shadow_map_test(map, q.face, x + dx, y + dy, q.depth, bias);
+      for (int dx = -pcf_radius; dx <= pcf_radius; ++dx)
+        lit += shadow_map_test(map, q.face, x + dx, y + dy, q.depth, bias);
     }
     const int side = 2 * pcf_radius + 1;
     return vec3(lit / float(side * side));
