@@ -38,7 +38,7 @@ TechniqueInfo half_angle_info() {
           ParameterSpec::real("albedo", 0.0, 0.0, 1.0,
                               "blend of forward multiple scattering (0 = single scattering, as shadow-rays)"),
           ParameterSpec::integer("light_buffer_size", 0, 0, 4096,
-                                 "light buffer texels per side (0 = the image's larger side; else >= 16)"),
+                                 "light buffer texels per side (0 = the image's larger side or one texel per pixel at the volume if finer)"),
       }},
       [] { return std::make_unique<HalfAngle>(); }};
 }

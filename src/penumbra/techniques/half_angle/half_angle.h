@@ -17,7 +17,9 @@
 //   cone_angle_deg  half-angle theta of the forward-scattering cone
 //   albedo          blend of forward multiple scattering (0: single scattering)
 //   light_buffer_size  light buffer texels per side (0: the image's larger
-//                   side, as Kniss et al. match the eye buffer)
+//                   side, as Kniss et al. match the eye buffer, or ipsvi's
+//                   texel per pixel at the volume where that is finer, as
+//                   when the camera zooms in)
 // Passes
 //   prepare: nothing beyond the shared resources: the slicing depends on the
 //            camera, so every light-space structure is per frame

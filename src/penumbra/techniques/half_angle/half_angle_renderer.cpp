@@ -5,6 +5,7 @@
 #include "penumbra/base/parallel.h"
 #include "penumbra/render/lighting.h"
 #include "penumbra/techniques/half_angle/half_angle_kernels.h"
+#include "penumbra/techniques/ipsvi/sweep_renderer.h"
 
 #include <algorithm>
 #include <atomic>
@@ -114,9 +115,16 @@ void HalfAngleRenderer::render(const Scene& scene, Image& image, RenderStats* st
   const int width = view.width, height = view.height;
   if (image.width() != width || image.height() != height) image = Image(width, height);
   if (settings_.light_buffer_size != 0 && settings_.light_buffer_size < 16) {
-    throw InvalidArgument("light_buffer_size", "must be 0 (the image size) or in [16, 4096]");
+    throw InvalidArgument("light_buffer_size", "must be 0 (automatic) or in [16, 4096]");
   }
-  const int n = settings_.light_buffer_size > 0 ? settings_.light_buffer_size : std::clamp(std::max(width, height), 16, 4096);
+  // Automatic size: Kniss et al.'s (the eye buffer's larger side), or ipsvi's
+  // rule (a texel about a pixel wide at the volume) when that is finer: once
+  // the camera zooms in, a light buffer over the whole box at the image's
+  // size has texels several pixels wide and grazing light on thin surfaces
+  // bands (engine CT zoomed to a third at 160^2: mean dE 1.86 -> 0.81).
+  const int n = settings_.light_buffer_size > 0
+                    ? settings_.light_buffer_size
+                    : std::max(std::clamp(std::max(width, height), 16, 4096), ipsvi_cache_size(scene, IpsviSettings{}));
   const std::size_t pixels = std::size_t(width) * std::size_t(height);
   const std::size_t texels = std::size_t(n) * std::size_t(n);
   check_memory_budget("half-angle buffers",

@@ -21,7 +21,7 @@ struct HalfAngleSettings {
   int slices = 0;  // 0: one slab per ray step along the central viewing ray
   float cone_angle_deg = 20.0f;
   float albedo = 0.0f;
-  int light_buffer_size = 0;  // texels per side; 0: max(width, height) of the image (Kniss et al.)
+  int light_buffer_size = 0;  // texels per side; 0: max(image side, ipsvi_cache_size)
 };
 
 class HalfAngleRenderer {

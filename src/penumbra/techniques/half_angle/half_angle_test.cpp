@@ -91,6 +91,23 @@ TEST(HalfAngle, MoreSlicesConverge) {
   EXPECT_LT(fine, 0.5 * coarse);
 }
 
+// Zoomed in, a light buffer of the image's size over the whole box has
+// texels several pixels wide; the automatic size then follows ipsvi's texel
+// per pixel at the volume and the shadows stay as sharp as shadow-rays'.
+TEST(HalfAngle, LightBufferFollowsTheZoom) {
+  Scene scene = lit_spheres();
+  Camera camera = scene.camera();
+  camera.fov_deg /= 4.0f;
+  camera.target = scene.volume().world_box().center() + vec3(6.0f, 0.0f, 4.0f);
+  scene.set_camera(camera);
+  const Image reference = render_with(scene, "shadow-rays");
+  const double automatic = mean_de(render_with(scene, "half-angle"), reference);
+  const double image_sized = mean_de(render_with(scene, "half-angle", {{"light_buffer_size", 48.0}}), reference);
+  std::printf("half-angle zoomed: automatic light buffer mean dE %.3f, image-sized %.3f\n", automatic, image_sized);
+  EXPECT_LT(automatic, 0.3);
+  EXPECT_LT(automatic, 0.6 * image_sized);
+}
+
 // Forward scattering: no cone is no change; a cone lightens shadows as in ipsvi.
 TEST(HalfAngle, ForwardScatteringReducesToSingleScatteringWithoutACone) {
   const Scene scene = lit_spheres();

@@ -40,7 +40,12 @@ int ipsvi_cache_size(const Scene& scene, const IpsviSettings& settings) {
   for (const Light& light : scene.lights()) {
     if (light.type == LightType::Environment) continue;
     const LightCacheProjection p = make_light_cache_projection(light, box, 1);
-    const float depth = light.at_infinity() ? 0.0f : glm::length(box.center() - light.position);
+    // A light inside the box (octahedral map) sees the volume at up to its
+    // half-diagonal, however close it is to the centre: measuring at the
+    // centre distance (0 for a light at the centre) gave a 16^2 cache and
+    // radial light leaks.
+    const float reach = p.mapping == LightMapping::Octahedral ? 0.5f * glm::length(box.extent()) : 0.0f;
+    const float depth = light.at_infinity() ? 0.0f : glm::max(glm::length(box.center() - light.position), reach);
     extent = std::max(extent, p.texel_world_size(depth));
   }
   return std::clamp(int(std::ceil(extent / pixel)), 16, 4096);

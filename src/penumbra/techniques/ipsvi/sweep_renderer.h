@@ -50,7 +50,8 @@ struct IpsviFrameCounts {
 };
 
 // The cache size `settings` asks for, or with 0 the one whose texels are about
-// as wide as a pixel at the volume's centre (16..4096). Throws InvalidArgument
+// as wide as a pixel at the volume's centre (for a light inside the box: at
+// the box's half-diagonal from the light) (16..4096). Throws InvalidArgument
 // naming cache_size for a size outside [16, 4096].
 int ipsvi_cache_size(const Scene& scene, const IpsviSettings& settings);
 
