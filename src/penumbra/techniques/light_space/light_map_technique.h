@@ -1,0 +1,64 @@
+#pragma once
+// What shadow-map, deep-shadow-map and cssm share: a technique whose light
+// visibility comes from one light-space map per light (LightMapSet). The
+// derived class reads its parameters, calls update_maps() with the values
+// that shape its maps and a builder, and renders through render_lit() with
+// its Visibility functor over views().
+#include "penumbra/render/lighting.h"
+#include "penumbra/render/render_loop.h"
+#include "penumbra/render/scene_resources.h"
+#include "penumbra/render/technique.h"
+#include "penumbra/techniques/light_space/light_map_set.h"
+
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+namespace penumbra {
+
+class LightMapTechnique : public Technique {
+ public:
+  std::uint64_t aux_bytes() const override { return maps_.bytes(); }
+  std::uint64_t rebuilds() const override { return rebuilds_; }
+
+ protected:
+  // Rebuilds every light's map, build(shadow_view, light_index, projection),
+  // when the data, the (shadow) TF, the lights, the clip planes, the step or
+  // `key` (the map parameters) changed since the last build.
+  template <class Build>
+  void update_maps(const Scene& scene, int resolution, std::vector<double> key, const Build& build) {
+    const bool shared_changed = resources_.update(scene);
+    if (!maps_.stale(scene, shared_changed, key)) return;
+    const RenderView view = resources_.shadow_view(scene);
+    maps_.rebuild(scene, view, resolution, std::move(key),
+                  [&](int light, const LightProjection& projection) { return build(view, light, projection); });
+    ++rebuilds_;
+  }
+
+  // The map views, index i for the scene's light i.
+  const LightMapView* views() const { return maps_.views(); }
+
+  // One ray-casting pass lit through `visibility`.
+  template <class Visibility>
+  void render_lit(const Scene& scene, const Visibility& visibility, Image& image, RenderStats* stats) {
+    maps_.check_ready(scene);
+    const RenderView view = resources_.view(scene);
+    const Shading shading = scene.material().shading;
+    render_image(
+        view, [&](const auto&) { return ScatteringLighting<Visibility>{&view, visibility, shading}; }, image,
+        stats);
+  }
+
+ private:
+  SceneResources resources_;
+  LightMapSet maps_;
+  std::uint64_t rebuilds_ = 0;
+};
+
+// The `resolution` parameter every light-map technique declares.
+inline ParameterSpec light_map_resolution_parameter() {
+  return ParameterSpec::integer("resolution", 1024, 256, 4096,
+                                "map texels per side (half per cube face for a point light in or near the volume)");
+}
+
+}  // namespace penumbra
