@@ -22,14 +22,7 @@ using testing::session_path;
 using testing::small_scene;
 using testing::TestServer;
 
-class ServerApi : public ::testing::Test {
- protected:
-  httplib::Result frame(const std::string& id, const std::string& body) {
-    auto c = server.client();
-    return c.Post(session_path(id, "/frame").c_str(), body, "application/json");
-  }
-  TestServer server;
-};
+using ServerApi = testing::ServerTest;
 
 TEST_F(ServerApi, ServesTheViewer) {
   auto c = server.client();

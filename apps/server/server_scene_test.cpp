@@ -16,16 +16,8 @@ using testing::frame_body;
 using testing::json_of;
 using testing::session_path;
 using testing::small_scene;
-using testing::TestServer;
 
-class ServerScenes : public ::testing::Test {
- protected:
-  httplib::Result frame(const std::string& id, const std::string& body) {
-    auto c = server.client();
-    return c.Post(session_path(id, "/frame").c_str(), body, "application/json");
-  }
-  TestServer server;
-};
+using ServerScenes = testing::ServerTest;
 
 TEST_F(ServerScenes, SceneRoundTripsThroughPutAndGet) {
   const std::string id = server.create_session();

@@ -122,6 +122,10 @@ void expect_error(const httplib::Result& r, int status, const std::string& key) 
 
 std::string session_path(const std::string& id, const std::string& rest) { return "/api/sessions/" + id + rest; }
 
+httplib::Result TestServer::post_frame(const std::string& id, const std::string& body) const {
+  return client().Post(session_path(id, "/frame").c_str(), body, "application/json");
+}
+
 std::string frame_body(int width, int height, const std::string& format, const json& extra) {
   json body{{"width", width}, {"height", height}, {"format", format}};
   body.update(extra);

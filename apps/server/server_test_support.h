@@ -5,6 +5,7 @@
 #include "penumbra/render/image.h"
 #include "server/http_server.h"
 
+#include <gtest/gtest.h>
 #include <httplib.h>
 #include <nlohmann/json.hpp>
 
@@ -42,10 +43,19 @@ class TestServer {
 
   // POST /api/sessions (with `scene` unless null); returns the id.
   std::string create_session(const nlohmann::json& scene = nullptr) const;
+  // POST /api/sessions/ID/frame with a frame_body().
+  httplib::Result post_frame(const std::string& id, const std::string& body) const;
 
  private:
   std::unique_ptr<HttpServer> server_;
   int port_ = 0;
+};
+
+// A server per test, for the endpoint test suites.
+class ServerTest : public ::testing::Test {
+ protected:
+  httplib::Result frame(const std::string& id, const std::string& body) { return server.post_frame(id, body); }
+  TestServer server;
 };
 
 nlohmann::json json_of(const httplib::Result& result);
