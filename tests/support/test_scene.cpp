@@ -1,7 +1,10 @@
 #include "test_scene.h"
 
+#include "penumbra/io/image_io.h"
 #include "penumbra/render/parameters.h"
 #include "penumbra/techniques/registry.h"
+
+#include <cstdlib>
 
 namespace penumbra::testing {
 
@@ -17,6 +20,32 @@ Scene procedural_scene(const std::string& builtin, ivec3 size, int image_size) {
   r.height = image_size;
   scene.set_render(r);
   return scene;
+}
+
+Scene lit_spheres(int image_size) {
+  Scene scene = procedural_scene("spheres", ivec3(48), image_size);
+  TransferFunction tf({{0.0f, vec3(1.0f, 0.6f, 0.3f), 0.0f},
+                       {0.3f, vec3(1.0f, 0.6f, 0.3f), 0.2f},
+                       {1.0f, vec3(0.9f, 0.9f, 1.0f), 0.8f}});
+  tf.set_range(vec2(0.0f, 1.0f));
+  scene.set_transfer_function(tf);
+  Light light;
+  light.direction = glm::normalize(vec3(0.5f, 0.7f, -1.0f));
+  scene.set_lights({light});
+  Material m;
+  m.ambient = 0.05f;
+  scene.set_material(m);
+  return scene;
+}
+
+Scene with_floor(Scene scene) {
+  const float z = scene.volume().world_box().lower.z - 8.0f;
+  scene.set_planes({Plane{vec3(0.0f, 0.0f, z), vec3(0.0f, 0.0f, 1.0f), vec3(0.8f)}});
+  return scene;
+}
+
+void save_test_image(const Image& image, const std::string& name) {
+  if (const char* dir = std::getenv("PENUMBRA_TEST_IMAGES")) write_png(std::string(dir) + "/" + name, image);
 }
 
 TransferFunction step_tf(float lo, vec3 color, float alpha) {

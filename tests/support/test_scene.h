@@ -17,6 +17,17 @@ Scene procedural_scene(const std::string& builtin, ivec3 size, int image_size = 
 // and alpha 0 below lo.
 TransferFunction step_tf(float lo, vec3 color, float alpha);
 
+// The 48^3 spheres with a translucent orange-to-white TF, one directional
+// light from the upper front and a little ambient.
+Scene lit_spheres(int image_size = 48);
+
+// The scene with an opaque grey floor plane 8 units below the volume's box.
+Scene with_floor(Scene scene);
+
+// Writes the image as PNG into $PENUMBRA_TEST_IMAGES when that is set, so a
+// developer can look at what a test rendered.
+void save_test_image(const Image& image, const std::string& name);
+
 // Renders with a registered technique and parameters (name=value pairs).
 Image render_with(const Scene& scene, const std::string& technique, const ParameterSettings& params = {});
 

@@ -7,7 +7,6 @@
 // about one voxel; the differences to shadow-rays are resampling at shadow
 // edges: a few dE there, well under 1 on average.
 #include "penumbra/analysis/image_metrics.h"
-#include "penumbra/io/image_io.h"
 #include "penumbra/io/scene_json.h"
 #include "penumbra/techniques/half_angle/slice_geometry.h"
 #include "penumbra/techniques/registry.h"
@@ -15,36 +14,15 @@
 
 #include <gtest/gtest.h>
 
-#include <cstdlib>
 #include <filesystem>
 
 namespace penumbra {
 namespace {
 
-using testing::procedural_scene;
 using testing::render_with;
+using testing::save_test_image;
 
-Scene lit_spheres(int image_size = 48) {
-  Scene scene = procedural_scene("spheres", ivec3(48), image_size);
-  TransferFunction tf({{0.0f, vec3(1.0f, 0.6f, 0.3f), 0.0f},
-                       {0.3f, vec3(1.0f, 0.6f, 0.3f), 0.2f},
-                       {1.0f, vec3(0.9f, 0.9f, 1.0f), 0.8f}});
-  tf.set_range(vec2(0.0f, 1.0f));
-  scene.set_transfer_function(tf);
-  Light light;
-  light.direction = glm::normalize(vec3(0.5f, 0.7f, -1.0f));
-  scene.set_lights({light});
-  Material m;
-  m.ambient = 0.05f;
-  scene.set_material(m);
-  const float z = scene.volume().world_box().lower.z - 8.0f;
-  scene.set_planes({Plane{vec3(0.0f, 0.0f, z), vec3(0.0f, 0.0f, 1.0f), vec3(0.8f)}});
-  return scene;
-}
-
-void save(const Image& image, const std::string& name) {
-  if (const char* dir = std::getenv("PENUMBRA_TEST_IMAGES")) write_png(std::string(dir) + "/" + name, image);
-}
+Scene lit_spheres(int image_size = 48) { return testing::with_floor(testing::lit_spheres(image_size)); }
 
 double mean_de(const Image& a, const Image& b) { return delta_e_stats(a, b).mean; }
 
@@ -52,8 +30,8 @@ TEST(HalfAngle, AlbedoZeroMatchesShadowRaysOnTheSpheres) {
   const Scene scene = lit_spheres();
   const Image reference = render_with(scene, "shadow-rays");
   const Image half = render_with(scene, "half-angle");
-  save(reference, "half-angle-spheres-shadow-rays.png");
-  save(half, "half-angle-spheres.png");
+  save_test_image(reference, "half-angle-spheres-shadow-rays.png");
+  save_test_image(half, "half-angle-spheres.png");
   const DeltaEStats de = delta_e_stats(half, reference);
   std::printf("half-angle vs shadow-rays: mean dE %.3f, p99 %.3f\n", de.mean, de.p99);
   EXPECT_LT(de.mean, 0.3);
@@ -137,8 +115,8 @@ TEST(HalfAngleVersusIpsvi, AgreeOnTheSpheresWithForwardScattering) {
   const Image ipsvi = render_with(scene, "ipsvi", params);
   const Image half = render_with(scene, "half-angle", params);
   const Image single = render_with(scene, "ipsvi");
-  save(ipsvi, "fig8-spheres-ipsvi.png");
-  save(half, "fig8-spheres-half-angle.png");
+  save_test_image(ipsvi, "fig8-spheres-ipsvi.png");
+  save_test_image(half, "fig8-spheres-half-angle.png");
   const double de = mean_de(ipsvi, half), effect = mean_de(ipsvi, single);
   std::printf("spheres, albedo 0.8: ipsvi vs half-angle mean dE %.3f (scattering itself changes %.3f)\n", de, effect);
   EXPECT_LT(de, 0.5);
@@ -161,8 +139,8 @@ TEST(HalfAngleVersusIpsvi, AgreeOnTheEngine) {
     // its light segments are marched at the sample, so it needs no more.
     const Image half = render_with(scene, "half-angle", {{"albedo", albedo}, {"light_buffer_size", 256.0}});
     if (albedo > 0.0) {
-      save(ipsvi, "fig8-engine-ipsvi.png");
-      save(half, "fig8-engine-half-angle.png");
+      save_test_image(ipsvi, "fig8-engine-ipsvi.png");
+      save_test_image(half, "fig8-engine-half-angle.png");
     }
     const DeltaEStats de = delta_e_stats(ipsvi, half);
     std::printf("engine, albedo %.1f: ipsvi vs half-angle mean dE %.3f, p99 %.3f; vs shadow-rays %.3f / %.3f\n",

@@ -12,7 +12,6 @@
 // well below 1 over the image.
 #include "penumbra/analysis/image_metrics.h"
 #include "penumbra/base/error.h"
-#include "penumbra/io/image_io.h"
 #include "penumbra/render/scene_resources.h"
 #include "penumbra/techniques/ipsvi/early_termination.h"
 #include "penumbra/techniques/ipsvi/sweep_plan.h"
@@ -24,39 +23,15 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 
 namespace penumbra {
 namespace {
 
+using testing::lit_spheres;
 using testing::procedural_scene;
 using testing::render_with;
-
-Scene lit_spheres(int image_size = 48) {
-  Scene scene = procedural_scene("spheres", ivec3(48), image_size);
-  TransferFunction tf({{0.0f, vec3(1.0f, 0.6f, 0.3f), 0.0f},
-                       {0.3f, vec3(1.0f, 0.6f, 0.3f), 0.2f},
-                       {1.0f, vec3(0.9f, 0.9f, 1.0f), 0.8f}});
-  tf.set_range(vec2(0.0f, 1.0f));
-  scene.set_transfer_function(tf);
-  Light light;
-  light.direction = glm::normalize(vec3(0.5f, 0.7f, -1.0f));
-  scene.set_lights({light});
-  Material m;
-  m.ambient = 0.05f;
-  scene.set_material(m);
-  return scene;
-}
-
-Scene with_floor(Scene scene) {
-  const float z = scene.volume().world_box().lower.z - 8.0f;
-  scene.set_planes({Plane{vec3(0.0f, 0.0f, z), vec3(0.0f, 0.0f, 1.0f), vec3(0.8f)}});
-  return scene;
-}
-
-void save(const Image& image, const std::string& name) {
-  if (const char* dir = std::getenv("PENUMBRA_TEST_IMAGES")) write_png(std::string(dir) + "/" + name, image);
-}
+using testing::save_test_image;
+using testing::with_floor;
 
 struct Rendered {
   Image image;
@@ -78,8 +53,8 @@ TEST(Ipsvi, AlbedoZeroMatchesShadowRaysOnTheSpheres) {
   const Scene scene = with_floor(lit_spheres());
   const Image reference = render_with(scene, "shadow-rays");
   const Image ipsvi = render_with(scene, "ipsvi");
-  save(reference, "ipsvi-spheres-shadow-rays.png");
-  save(ipsvi, "ipsvi-spheres.png");
+  save_test_image(reference, "ipsvi-spheres-shadow-rays.png");
+  save_test_image(ipsvi, "ipsvi-spheres.png");
   const DeltaEStats de = delta_e_stats(ipsvi, reference);
   std::printf("ipsvi vs shadow-rays, spheres + floor: mean dE %.3f, p99 %.3f\n", de.mean, de.p99);
   EXPECT_LT(de.mean, 0.3);
@@ -167,8 +142,8 @@ TEST(Ipsvi, EarlyTerminationKeepsWhatShadowsOtherRays) {
   IpsviSettings ert;
   ert.early_termination = true;
   const Rendered early = render_ipsvi(scene, ert);
-  save(full.image, "ipsvi-ert-off.png");
-  save(early.image, "ipsvi-ert-on.png");
+  save_test_image(full.image, "ipsvi-ert-off.png");
+  save_test_image(early.image, "ipsvi-ert-on.png");
   const DeltaEStats de = delta_e_stats(early.image, full.image);
   std::printf("ERT on spheres: mean dE %.4f, p99 %.3f; view samples %llu -> %llu\n", de.mean, de.p99,
               (unsigned long long)full.counts.view_samples, (unsigned long long)early.counts.view_samples);
@@ -205,8 +180,8 @@ TEST(Ipsvi, PointLightZonesBlendWithoutSeams) {
   scene.set_lights({light});
   const Image reference = render_with(scene, "shadow-rays");
   const Image ipsvi = render_with(scene, "ipsvi");
-  save(reference, "ipsvi-point-shadow-rays.png");
-  save(ipsvi, "ipsvi-point.png");
+  save_test_image(reference, "ipsvi-point-shadow-rays.png");
+  save_test_image(ipsvi, "ipsvi-point.png");
   const ImageLight il = project_light(scene.camera().view(), 64, 64, light);
   ASSERT_EQ(int(il.flow), int(LightFlow::Outward));
   ASSERT_TRUE(il.position.x > 8 && il.position.x < 56 && il.position.y > 8 && il.position.y < 56)
@@ -337,9 +312,9 @@ TEST(Ipsvi, OffScreenStructuresShadowOnlyWithPiecewiseIntegration) {
   const Image reference = render_with(scene, "shadow-rays");
   const Image with_pi = render_with(scene, "ipsvi");
   const Image without_pi = render_with(scene, "ipsvi", {{"piecewise_integration", false}});
-  save(reference, "ipsvi-offscreen-shadow-rays.png");
-  save(with_pi, "ipsvi-offscreen-pi.png");
-  save(without_pi, "ipsvi-offscreen-no-pi.png");
+  save_test_image(reference, "ipsvi-offscreen-shadow-rays.png");
+  save_test_image(with_pi, "ipsvi-offscreen-pi.png");
+  save_test_image(without_pi, "ipsvi-offscreen-no-pi.png");
   const double de_pi = mean_de(with_pi, reference), de_no_pi = mean_de(without_pi, reference);
   std::printf("off screen: mean dE with PI %.3f, without %.3f\n", de_pi, de_no_pi);
   EXPECT_LT(de_pi, 0.3);
@@ -426,8 +401,8 @@ TEST(Ipsvi, ForwardScatteringLightensShadowsAndReducesToSingleScatteringWithoutA
   scene.set_material(m);
   const Image g_single = render_with(scene, "ipsvi");
   const Image scattered = render_with(scene, "ipsvi", {{"albedo", 0.8}, {"cone_angle_deg", 30.0}});
-  save(g_single, "ipsvi-translucent.png");
-  save(scattered, "ipsvi-translucent-albedo.png");
+  save_test_image(g_single, "ipsvi-translucent.png");
+  save_test_image(scattered, "ipsvi-translucent-albedo.png");
   // Shadowed pixels: darker than half the lit floor (the brightest tenth).
   std::vector<float> lum;
   for (const vec4& p : g_single.pixels()) lum.push_back(luminance(vec3(p)));
