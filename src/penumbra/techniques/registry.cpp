@@ -14,6 +14,7 @@
 #include "penumbra/techniques/ipsvi/ipsvi.h"
 #include "penumbra/techniques/half_angle/half_angle.h"
 #include "penumbra/techniques/occlusion_map/occlusion_map.h"
+#include "penumbra/techniques/convolution/convolution.h"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -35,6 +36,7 @@ const std::vector<TechniqueInfo>& technique_registry() {
       ipsvi_info(),
       half_angle_info(),
       occlusion_map_info(),
+      convolution_info(),
   };
   return registry;
 }

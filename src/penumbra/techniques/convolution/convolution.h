@@ -1,0 +1,36 @@
+#pragma once
+// convolution: D. Patel, V. Soltészová, J. M. Nordbotten and S. Bruckner,
+// "Instant Convolution Shadows for Volumetric Detail Mapping", ACM TOG 32(5),
+// 2013. View-aligned slabs are traversed front to back; each slab is both
+// occluder and receiver, and light travels from slab to slab by a 2D
+// convolution of one pair of ping-pong buffers per light. Iterating a kernel
+// of mean e mu and covariance d1 e Sigma (eq. 7/15) gives, by the central
+// limit theorem, the exact shadow of a distant Gaussian light (mean mu,
+// covariance Sigma on the virtual light plane) for occluder-receiver pairs
+// d1 apart, and the correct half-shadow line behind an edge at any distance.
+// Light model and the mapping from the scene's lights: gaussian_light.h.
+//
+// Parameters
+//   slab_distance       e in voxels (0: the scene's render step)
+//   optimal_distance    d1 in voxels (0: a quarter of the box's depth extent)
+//   kernel              gaussian | poisson | ellipse (slab_kernel.h)
+//   kernel_samples      taps (ellipse N, default 2; poisson N, default 8;
+//                       gaussian M per side, default 19), 0 = default
+//   light_sigma_x2, light_sigma_y2, light_rotation_deg
+//                       the paper's (sigma_x^2, sigma_y^2, alpha) for every
+//                       light (sigma_x2 < 0: from the scene's lights)
+//   seed                for the random kernel rotations
+// Passes
+//   prepare: only the shared resources; slabs and buffers depend on the
+//            camera, so everything else is per frame (rebuilds() stays 0)
+//   render:  the slab loop of slab_renderer.h
+// Not yet: meshes (layered depth image, OBJ/PLY readers, per-material TFs,
+// the microfacet term at surface crossings; the detail functions exist in
+// procedural_detail.h), preintegrated compositing.
+#include "penumbra/render/technique.h"
+
+namespace penumbra {
+
+TechniqueInfo convolution_info();
+
+}  // namespace penumbra

@@ -1,0 +1,76 @@
+#pragma once
+// Step (1) of Patel et al. 2013, section 4.2: the light arriving at slab k is
+// the light that left slab k - 1, convolved with the slab kernel. Light
+// buffers live on the image's pixel grid (one texel per pixel, as the paper's
+// screen-space buffers); texel i of slab k is the point where pixel i's
+// viewing ray crosses the slab's plane at depth z_k (depth along the camera's
+// forward axis f). The light reaching that point P came from
+//   Q = P - e f - (offset_j . (r, u)),   offset_j = a kernel tap (mean e mu),
+// on slab k - 1, which is projected back into that slab's pixel grid and read
+// bilinearly. Doing the step in world space keeps perspective cameras right:
+// their pixel rays diverge, so a light along f drifts across pixels.
+// Outside the image the previous buffer is clamped to its edge texels (as a
+// GPU texture with clamp-to-edge): light entering from outside the view has
+// crossed what the border pixels saw, the closest guess available.
+#include "penumbra/render/image.h"
+#include "penumbra/scene/camera.h"
+#include "penumbra/techniques/convolution/slab_kernel.h"
+
+namespace penumbra {
+
+struct SlabFrame {
+  CameraView camera;
+  int width = 0, height = 0;
+  float slab_distance = 1.0f;  // e, world units
+};
+
+PENUMBRA_HD inline vec3 slab_point(const SlabFrame& f, int x, int y, float depth) {
+  const Ray ray = f.camera.pixel_ray(float(x) + 0.5f, float(y) + 0.5f, f.width, f.height);
+  return ray.origin + ray.direction * (depth / glm::dot(ray.direction, f.camera.forward));
+}
+
+// Continuous pixel coordinates (texel centres at +0.5) of a world point.
+PENUMBRA_HD inline vec2 pixel_of(const SlabFrame& f, vec3 q) {
+  const CameraView& c = f.camera;
+  const vec3 d = q - c.eye;
+  float sx = glm::dot(d, c.right), sy = glm::dot(d, c.up);
+  if (!c.orthographic) {
+    const float z = glm::max(glm::dot(d, c.forward), 1e-6f);
+    sx /= z;
+    sy /= z;
+  }
+  const float aspect = float(f.width) / float(f.height);
+  return vec2((sx / (c.half_height * aspect) + 1.0f) * 0.5f * float(f.width),
+              (1.0f - sy / c.half_height) * 0.5f * float(f.height));
+}
+
+PENUMBRA_HD inline vec3 read_buffer(const vec3* buffer, int width, int height, vec2 p) {
+  const float fx = p.x - 0.5f, fy = p.y - 0.5f;
+  const float x0f = glm::floor(fx), y0f = glm::floor(fy);
+  const float tx = fx - x0f, ty = fy - y0f;
+  const int x0 = int(x0f), y0 = int(y0f);
+  auto at = [&](int x, int y) { return buffer[glm::clamp(x, 0, width - 1) + width * glm::clamp(y, 0, height - 1)]; };
+  return (1.0f - ty) * ((1.0f - tx) * at(x0, y0) + tx * at(x0 + 1, y0)) +
+         ty * ((1.0f - tx) * at(x0, y0 + 1) + tx * at(x0 + 1, y0 + 1));
+}
+
+// The convolved light arriving at texel (x, y) of the slab at `depth`.
+PENUMBRA_HD inline vec3 convolve_texel(const SlabFrame& f, const SlabKernel& k, const vec3* previous, int x, int y,
+                                       float depth) {
+  const vec3 p = slab_point(f, x, y, depth) - f.slab_distance * f.camera.forward;
+  const float phi = k.pixel_angle(x, y);
+  const float c = glm::cos(phi), s = glm::sin(phi);
+  vec3 sum(0.0f);
+  for (int j = 0; j < k.count; ++j) {
+    const vec2 o = k.offset(j, c, s);
+    const vec3 q = p - o.x * f.camera.right - o.y * f.camera.up;
+    sum += k.weights[j] * read_buffer(previous, f.width, f.height, pixel_of(f, q));
+  }
+  return sum;
+}
+
+// The whole buffer for the slab at `depth` (parallel over rows).
+void convolve_slab(const SlabFrame& frame, const SlabKernel& kernel, const vec3* previous, vec3* incoming,
+                   float depth);
+
+}  // namespace penumbra
