@@ -12,10 +12,13 @@
 # single scattering as the reference, shadow-rays, filtered-sat with the box of
 # matching width and cone-shadows with the matching cone).
 #
-# Usage: scripts/bench-filtered-sat.sh [RUNS]        (default 3; medians over runs)
+# Usage: scripts/bench-filtered-sat.sh [RUNS]        (default 1; medians over runs)
 #        scripts/bench-filtered-sat.sh compare        (minutes: the reference is path traced)
 #   PENUMBRA=path/to/penumbra   the binary (default build/penumbra)
 #   OUT=dir                     scenes and raw results (default build/bench-filtered-sat)
+#   SCENES="engine-3ol ..."     the Table 1 rows to run (default: the engine and head rows, about 3 minutes per
+#                               run on a quiet 2-core machine; SCENES=all adds the 256^3 synthetic volume,
+#                               about 6-7 minutes: shadow-rays' and cone-shadows' caches dominate)
 # Needs ../shared/data (engine, head) and build/peer/synth256.nrrd (made by
 # scripts/bench-vs-vtk.sh, which needs VTK); missing volumes are skipped.
 # Prints the markdown tables of docs/PERFORMANCE.md ("filtered-sat, sat-ao,
@@ -55,7 +58,9 @@ PY
   exit 0
 fi
 
-runs=${1:-3}
+runs=${1:-1}
+scenes=${SCENES:-"engine-3ol engine-2pl head-3ol head-2pl"}
+[ "$scenes" = all ] && scenes="engine-3ol engine-2pl head-3ol head-2pl synth-3ol synth-2pl"
 results=$out/results.jsonl
 : > "$results"
 
@@ -124,25 +129,32 @@ volume_of() {
 echo "# $(date -u +%Y-%m-%dT%H:%MZ) $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//')"
 echo "# load before: $(uptime | sed 's/.*load average: //')"
 for run in $(seq 1 "$runs"); do
-  for scene in engine-3ol engine-2pl head-3ol head-2pl synth-3ol synth-2pl; do
+  for scene in $scenes; do
     file=$out/$scene.json
     if [ ! -f "$(volume_of "$file")" ]; then
       echo "# skipping $scene: no $(volume_of "$file")" >&2
       continue
     fi
     "$bin" bench "$file" --technique shadow-rays --technique sat-ao --technique cone-shadows --technique filtered-sat \
-      --param shadow-rays.shadow_cache=true --param sat_resolution=0.5 --frames 5 |
+      --param shadow-rays.shadow_cache=true --param sat_resolution=0.5 --frames 3 |
       sed "s/^{/{\"scene\": \"$scene\", \"run\": $run, /" >> "$results"
   done
-  # The cost of a TF change does not depend on the filter size.
+  # The cost of a TF change does not depend on the filter size (small images:
+  # only the prepare times are reported here).
   if [ -f "$(volume_of "$out/engine-3ol.json")" ]; then
     for filter in 3 9 15; do
       "$bin" bench "$out/engine-3ol.json" --technique filtered-sat --param sat_resolution=0.5 \
-        --param filter_voxels=$filter --frames 3 |
+        --param filter_voxels=$filter --size 128x128 --frames 1 |
         sed "s/^{/{\"scene\": \"engine-3ol\", \"filter\": $filter, \"run\": $run, /" >> "$results"
       "$bin" bench "$out/engine-3ol.json" --technique filtered-sat --param sat_resolution=0.5 \
-        --param filter_voxels=$filter --param kernel=gaussian --frames 1 |
+        --param filter_voxels=$filter --param kernel=gaussian --size 128x128 --frames 1 |
         sed "s/^{/{\"scene\": \"engine-3ol\", \"filter\": $filter, \"kernel\": \"gaussian\", \"run\": $run, /" >> "$results"
+    done
+    # The tables alone (no shadow cache): how much of a TF change they are.
+    for scene in engine-3ol engine-2pl; do
+      "$bin" bench "$out/$scene.json" --technique filtered-sat --param sat_resolution=0.5 --param shadow_cache=false \
+        --size 128x128 --frames 1 |
+        sed "s/^{/{\"scene\": \"$scene\", \"tables_only\": true, \"run\": $run, /" >> "$results"
     done
   fi
 done
@@ -167,7 +179,8 @@ print("| data set | resolution | lights | SAT MB AO/CS | SAT MB FS | TF change m
       " light move ms SS / AO / CS / FS | frame ms SS / AO / CS / FS |")
 print("|---|---|---|---|---|---|---|---|")
 for scene in ["engine-3ol", "engine-2pl", "head-3ol", "head-2pl", "synth-3ol", "synth-2pl"]:
-    by = {t: [r for r in rows if r.get("scene") == scene and r["technique"] == t and "filter" not in r] for t in order}
+    by = {t: [r for r in rows if r.get("scene") == scene and r["technique"] == t and "filter" not in r
+              and "tables_only" not in r] for t in order}
     if not all(by.values()):
         continue
     lights = 3 if scene.endswith("3ol") else 2
@@ -187,6 +200,13 @@ for f in (3, 9, 15):
     if box:
         print("| %d | %.0f | %.0f | %s |" % (f, median(box, "tf_change_ms"), median(box, "light_move_ms"),
                                              "%.0f" % median(gauss, "tf_change_ms") if gauss else "-"))
+print()
+print("| filtered-sat without shadow cache | TF change ms (the tables alone) | SAT MB |")
+print("|---|---|---|")
+for scene in ("engine-3ol", "engine-2pl"):
+    t = [r for r in rows if r.get("scene") == scene and r.get("tables_only")]
+    if t:
+        print("| %s | %.0f | %.1f |" % (scene, median(t, "tf_change_ms"), t[0]["aux_bytes"] / 2**20))
 print()
 print("runs per cell: %d (medians over runs; each run's TF change and light move are medians of 3 prepares)"
       % max(1, len({r["run"] for r in rows})))

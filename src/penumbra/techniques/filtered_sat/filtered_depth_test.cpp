@@ -6,11 +6,14 @@
 #include "penumbra/render/scene_resources.h"
 #include "penumbra/techniques/filtered_sat/light_tables.h"
 #include "penumbra/techniques/filtered_sat/orthodirectional_groups.h"
+#include "penumbra/techniques/filtered_sat/shadow_filter.h"
 #include "test_scene.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace penumbra {
 namespace {
@@ -171,6 +174,97 @@ TEST(FilteredDepth, SsatBoxFilterMatchesShadowRaysOverThePatch) {
     EXPECT_LT(coarse.mean, 0.005);
     EXPECT_LT(coarse.max, 0.02);
     EXPECT_LT(fine.mean, 0.7 * coarse.mean);
+  }
+}
+
+// Eq. 25 by brute force: the patch split into the filter's taps x taps
+// sub-patches, each one's mean optical depth from 2 x 2 rays through it,
+// weighted by the product of the taps' weights.
+template <class RayDepth>
+float brute_gaussian(const ShadowFilter& filter, RayDepth ray_depth) {
+  constexpr int kRaysPerTap = 2;
+  const float step = 2.0f * filter.half_width / float(filter.taps);
+  double depth = 0.0;
+  for (int j = 0; j < filter.taps; ++j)
+    for (int i = 0; i < filter.taps; ++i) {
+      double sum = 0.0;
+      for (int y = 0; y < kRaysPerTap; ++y)
+        for (int x = 0; x < kRaysPerTap; ++x) {
+          const float a = -filter.half_width + step * (float(i) + (float(x) + 0.5f) / kRaysPerTap);
+          const float b = -filter.half_width + step * (float(j) + (float(y) + 0.5f) / kRaysPerTap);
+          sum += ray_depth(a, b);
+        }
+      depth += double(filter.weights[i]) * filter.weights[j] * sum / (kRaysPerTap * kRaysPerTap);
+    }
+  return float(depth);
+}
+
+// The Gaussian lookups (8 x 8 sub-cuboids of the CSAT, 8 x 8 sub-pyramids of
+// the SSAT) against eq. 25 by brute force, for an oblique directional light
+// and point lights inside and outside the volume, at one table cell per
+// voxel. A sub-patch is an eighth of the patch (0.9 voxels for this 4-voxel
+// filter), about a cell, so each sub-cuboid carries the first-order error of
+// the cells its faces cut, but the errors of neighbouring sub-cuboids cancel
+// in the weighted sum (they share their faces). Samples the table finds lit
+// are skipped before the (costly) brute force. Observed: mean |dT|
+// 0.0009-0.0026, worst 0.006; asserted as for the box: mean 0.005, worst 0.02.
+TEST(FilteredDepth, GaussianLookupsMatchWeightedShadowRays) {
+  const Scene scene = smooth_spheres();
+  SceneResources resources;
+  resources.update(scene);
+  const RenderView v = resources.shadow_view(scene);
+  const ShadowFilter filter = make_shadow_filter(FilterKernel::Gaussian, 4.0f, 1.0f);
+  ASSERT_EQ(filter.taps, ShadowFilter::kMaxTaps);
+  Light directional;
+  directional.direction = glm::normalize(vec3(0.3f, -0.5f, -0.8f));
+  Light inside, outside;
+  inside.type = outside.type = LightType::Point;
+  inside.position = vec3(3.0f, -2.0f, 4.0f);
+  outside.position = vec3(70.0f, -50.0f, 40.0f);
+  for (const Light& light : {directional, inside, outside}) {
+    SCOPED_TRACE(::testing::Message() << "light type " << int(light.type));
+    LightTables tables;
+    tables.build(v, {light}, 1.0f);
+    const LightTableLookup& lookup = tables.lookups()[0];
+    Pcg32 rng(29);
+    double mean = 0.0, worst = 0.0;
+    int n = 0;
+    constexpr int kSamples = 12;
+    for (int attempt = 0; n < kSamples && attempt < 100000; ++attempt) {
+      const vec3 p = v.box.lower + vec3(rng.next_float(), rng.next_float(), rng.next_float()) * v.box.extent();
+      const float lookup_depth = filtered_optical_depth(lookup, filter, p);
+      if (lookup_depth < 0.03f) continue;
+      float reference = 0.0f;
+      if (lookup.kind == LightTableKind::Cartesian) {
+        const vec3 ra = lookup.cartesian.axes[lookup.axis == 0 ? 1 : 0];
+        const vec3 rb = lookup.cartesian.axes[lookup.axis == 2 ? 1 : 2];
+        reference = brute_gaussian(filter, [&](float a, float b) {
+          return brute_depth(v, p + a * ra + b * rb, -light.direction, kInfinity);
+        });
+      } else {
+        const SphericalTableGrid& g = lookup.spherical;
+        const vec3 s = g.spherical_from_world(p);
+        // Too close to the light for the patch (+-3 sigma here): the lookup's
+        // (phi, theta) boxes and eq. 5's square differ by O((S / R)^2).
+        if (s.z < 8.0f * filter.half_width) continue;
+        const vec3 r_phi = -std::sin(s.x) * g.axes[0] + std::cos(s.x) * g.axes[1];
+        const vec3 r_theta = std::cos(s.y) * std::cos(s.x) * g.axes[0] + std::cos(s.y) * std::sin(s.x) * g.axes[1] -
+                             std::sin(s.y) * g.axes[2];
+        reference = brute_gaussian(filter, [&](float a, float b) {
+          const vec3 on_sphere = g.light + s.z * glm::normalize(p + a * r_phi + b * r_theta - g.light);
+          return brute_depth(v, on_sphere, glm::normalize(g.light - on_sphere), s.z);
+        });
+      }
+      if (reference < 0.05f) continue;  // lit: nothing to compare
+      const double d = std::abs(std::exp(-double(lookup_depth)) - std::exp(-double(reference)));
+      mean += d / kSamples;
+      worst = std::max(worst, d);
+      ++n;
+    }
+    ASSERT_EQ(n, kSamples);
+    std::printf("Gaussian, light type %d: |dT| mean %.4f max %.4f\n", int(light.type), mean, worst);
+    EXPECT_LT(mean, 0.005);
+    EXPECT_LT(worst, 0.02);
   }
 }
 
