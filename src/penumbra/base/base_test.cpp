@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <vector>
@@ -61,6 +62,31 @@ TEST(Math, ExpNonpositiveMatchesStdExp) {
   EXPECT_EQ(exp_nonpositive(-100.0f), 0.0f);
   EXPECT_EQ(exp_nonpositive(-std::numeric_limits<float>::infinity()), 0.0f);
   EXPECT_EQ(exp_nonpositive(std::numeric_limits<float>::quiet_NaN()), 0.0f);
+}
+
+TEST(Math, LogPositiveMatchesStdLog) {
+  // Over many binades and both sides of the sqrt(2) mantissa split.
+  double worst = 0.0;
+  for (float x = 1e-30f; x < 1e30f; x *= 1.0137f) {
+    const double expected = std::log(double(x));
+    worst = std::max(worst, std::abs(log_positive(x) - expected) / std::max(1.0, std::abs(expected)));
+  }
+  EXPECT_LT(worst, 1e-6);
+  EXPECT_EQ(log_positive(1.0f), 0.0f);
+}
+
+TEST(Math, PowUnitMatchesStdPowForHighlights) {
+  for (float s : {1.0f, 5.0f, 20.0f, 128.0f}) {
+    double worst = 0.0;
+    for (int i = 1; i <= 1000; ++i) {
+      const float x = float(i) / 1000.0f;
+      worst = std::max(worst, std::abs(double(pow_unit(x, s)) - std::pow(double(x), double(s))));
+    }
+    EXPECT_LT(worst, 2e-6) << "shininess " << s;
+  }
+  EXPECT_EQ(pow_unit(0.0f, 20.0f), 0.0f);
+  EXPECT_EQ(pow_unit(0.3f, 0.0f), 1.0f);
+  EXPECT_EQ(pow_unit(1.0f, 50.0f), 1.0f);
 }
 
 TEST(Pcg32, IsDeterministicAndUniform) {

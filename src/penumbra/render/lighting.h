@@ -29,7 +29,7 @@ PENUMBRA_HD inline bool blocked_by_planes(const RenderView& v, vec3 p, const Lig
 // has them), facing the viewer; returns false where the gradient vanishes
 // (homogeneous regions), which are then lit as if facing the light without a
 // highlight.
-PENUMBRA_HD inline bool shading_normal(const RenderView& v, const SamplePoint& s, vec3& normal) {
+PENUMBRA_HD PENUMBRA_FORCE_INLINE bool shading_normal(const RenderView& v, const SamplePoint& s, vec3& normal) {
   const vec3 g = v.normals.texels ? v.normals.sample(s.index) : v.volume.gradient_index(s.index);
   const float len = glm::length(g);
   if (!(len > 0.0f) || !is_finite(len)) return false;
@@ -48,7 +48,7 @@ struct ScatteringLighting {
   Visibility visibility;
   Shading shading;
 
-  PENUMBRA_HD vec3 sample(const SamplePoint& s) const {
+  PENUMBRA_HD PENUMBRA_FORCE_INLINE vec3 sample(const SamplePoint& s) const {
     const RenderView& v = *view;
     const Material& m = v.material;
     const vec3 albedo = m.albedo * s.color;
@@ -68,9 +68,10 @@ struct ScatteringLighting {
         factor = m.diffuse;
       }
       const float highlight =
-          has_normal ? m.specular * glm::pow(glm::max(0.0f, glm::dot(normal, glm::normalize(ls.to_light - s.ray_dir))),
-                                             m.shininess)
-                     : 0.0f;
+          has_normal && m.specular > 0.0f
+              ? m.specular * pow_unit(glm::max(0.0f, glm::dot(normal, glm::normalize(ls.to_light - s.ray_dir))),
+                                      m.shininess)
+              : 0.0f;
       if (factor <= 0.0f && highlight <= 0.0f) continue;
       if (blocked_by_planes(v, s.world, ls)) continue;
       const vec3 visible = visibility(i, s.world, ls) * ls.radiance;

@@ -67,13 +67,13 @@ struct TransferFunctionView {
 
   // (rgb, sigma_t per world unit) for a data value. NaN and +-inf are
   // transparent; values outside the range take the end entries.
-  PENUMBRA_HD vec4 lookup(float value) const {
+  PENUMBRA_HD PENUMBRA_FORCE_INLINE vec4 lookup(float value) const {
     if (!is_finite(value)) return vec4(0.0f);
     return lookup_finite(value);
   }
 
   // The same for a value known to be finite (integer voxel types).
-  PENUMBRA_HD vec4 lookup_finite(float value) const {
+  PENUMBRA_HD PENUMBRA_FORCE_INLINE vec4 lookup_finite(float value) const {
     float x = (value - value_min) * index_scale;
     x = x < 0.0f ? 0.0f : x;
     const float last = float(size - 1);

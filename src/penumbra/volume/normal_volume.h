@@ -20,7 +20,7 @@ struct NormalView {
   // Interpolated gradient direction (not unit length: shorter where the
   // neighbouring directions disagree, zero in homogeneous regions), at an
   // index-space position.
-  PENUMBRA_HD vec3 sample(vec3 p) const {
+  PENUMBRA_HD PENUMBRA_FORCE_INLINE vec3 sample(vec3 p) const {
     const vec3 upper = vec3(dims - 1);
     p = glm::clamp(p, vec3(0.0f), upper);
     const ivec3 i0 = glm::min(ivec3(p), glm::max(dims - 2, ivec3(0)));
@@ -29,12 +29,19 @@ struct NormalView {
     const std::int64_t sy = dims.y > 1 ? 4 * std::int64_t(dims.x) : 0;
     const std::int64_t sz = dims.z > 1 ? 4 * std::int64_t(dims.x) * dims.y : 0;
     const std::int8_t* c = texels + 4 * (i0.x + std::int64_t(dims.x) * (i0.y + std::int64_t(dims.y) * i0.z));
-    auto load = [](const std::int8_t* t) { return vec3(float(t[0]), float(t[1]), float(t[2])); };
-    const vec3 x00 = glm::mix(load(c), load(c + sx), f.x);
-    const vec3 x10 = glm::mix(load(c + sy), load(c + sx + sy), f.x);
-    const vec3 x01 = glm::mix(load(c + sz), load(c + sx + sz), f.x);
-    const vec3 x11 = glm::mix(load(c + sy + sz), load(c + sx + sy + sz), f.x);
-    return glm::mix(glm::mix(x00, x10, f.y), glm::mix(x01, x11, f.y), f.z) * (1.0f / 127.0f);
+    // Lane by lane over the four bytes of a texel, so the compiler can keep
+    // the whole interpolation in one vector register.
+    float r[4];
+    for (int k = 0; k < 4; ++k) {
+      const float x00 = float(c[k]) + f.x * (float(c[sx + k]) - float(c[k]));
+      const float x10 = float(c[sy + k]) + f.x * (float(c[sx + sy + k]) - float(c[sy + k]));
+      const float x01 = float(c[sz + k]) + f.x * (float(c[sx + sz + k]) - float(c[sz + k]));
+      const float x11 = float(c[sy + sz + k]) + f.x * (float(c[sx + sy + sz + k]) - float(c[sy + sz + k]));
+      const float y0 = x00 + f.y * (x10 - x00);
+      const float y1 = x01 + f.y * (x11 - x01);
+      r[k] = y0 + f.z * (y1 - y0);
+    }
+    return vec3(r[0], r[1], r[2]) * (1.0f / 127.0f);
   }
 };
 

@@ -32,7 +32,7 @@ template <class T> struct VolumeSampler {
         stride_z(grid.z > 1 ? std::int64_t(grid.x) * grid.y : 0) {}
 
   // Trilinear sample at an index-space position, clamped to the grid.
-  PENUMBRA_HD float operator()(vec3 p) const {
+  PENUMBRA_HD PENUMBRA_FORCE_INLINE float operator()(vec3 p) const {
     p = glm::clamp(p, vec3(0.0f), upper);
     const ivec3 i0 = glm::min(ivec3(p), max_base);
     const vec3 f = glm::min(p - vec3(i0), vec3(1.0f));
