@@ -7,7 +7,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 runs=${1:-3}
-bin=build/penumbra
+bin=${PENUMBRA_BIN:-build/penumbra}  # another build: PENUMBRA_BIN=build-x/penumbra
 peer=../shared/peers/vtk_dvr_bench.py
 mkdir -p build/peer
 [ -f build/peer/synth256.nrrd ] || /usr/bin/python3 "$peer" --dump-nrrd build/peer/synth256.nrrd --configs cpu0 --frames 1 > /dev/null
