@@ -30,18 +30,28 @@ void resample_axis(const float* in, float* out, std::int64_t outer, std::int64_t
   }, std::max<std::int64_t>(1, 65536 / std::max<std::int64_t>(inner, 1)));
 }
 
-// The first pass: voxels -> moments of u, resampled along x.
+// The first pass: voxels -> moments of u, resampled along x. Voxels cut away
+// by a clip plane count as u = 0, like air, so clipped material occludes
+// nothing.
 template <class T>
-void moments_along_x(const T* voxels, ivec3 dims, vec2 range, int moments, const ResamplingTaps& taps, float* out) {
+void moments_along_x(const VolumeView& volume, vec2 range, const std::vector<vec4>& clip_planes, int moments,
+                     const ResamplingTaps& taps, float* out) {
+  const T* voxels = static_cast<const T*>(volume.data);
+  const ivec3 dims = volume.dims;
   const double scale = range.y > range.x ? 1.0 / (double(range.y) - double(range.x)) : 1.0;
   const std::int64_t rows = std::int64_t(dims.y) * dims.z;
   parallel_for(0, rows, [&](std::int64_t first_row, std::int64_t last_row) {
     std::vector<float> u(std::size_t(dims.x));
     for (std::int64_t r = first_row; r < last_row; ++r) {
       const T* row = voxels + r * dims.x;
+      const float y = float(r % dims.y), z = float(r / dims.y);
       for (int x = 0; x < dims.x; ++x) {
         const double v = double(row[x]);
-        u[std::size_t(x)] = std::isfinite(v) ? float(std::clamp((v - double(range.x)) * scale, 0.0, 1.0)) : 0.0f;
+        const bool clipped = !clip_planes.empty() &&
+                             !inside_clip_planes(volume.world_from_index(vec3(float(x), y, z)), clip_planes.data(),
+                                                 int(clip_planes.size()));
+        u[std::size_t(x)] =
+            std::isfinite(v) && !clipped ? float(std::clamp((v - double(range.x)) * scale, 0.0, 1.0)) : 0.0f;
       }
       float* dst = out + r * std::int64_t(taps.n_out) * moments;
       for (int j = 0; j < taps.n_out; ++j) {
@@ -83,9 +93,10 @@ void MomentPyramidSettings::validate() const {
   }
 }
 
-MomentPyramid::MomentPyramid(const VolumeView& volume, vec2 value_range, const MomentPyramidSettings& settings)
+MomentPyramid::MomentPyramid(const VolumeView& volume, vec2 value_range, const MomentPyramidSettings& settings,
+                             std::vector<vec4> clip_planes)
     : settings_(settings), data_dims_(volume.dims), spacing_(volume.spacing), origin_(volume.origin),
-      value_range_(value_range) {
+      value_range_(value_range), clip_planes_(std::move(clip_planes)) {
   settings.validate();
   if (volume.data == nullptr || glm::any(glm::lessThan(volume.dims, ivec3(1)))) {
     throw InvalidArgument("volume", "the occlusion map needs a non-empty volume");
@@ -118,7 +129,7 @@ MomentPyramid::MomentPyramid(const VolumeView& volume, vec2 value_range, const M
     std::vector<float> along_x = allocate(ivec3(d0.x, volume.dims.y, volume.dims.z), channels, "occlusion map");
     visit_voxel_type(volume.type, [&](auto tag) {
       using T = decltype(tag);
-      moments_along_x(static_cast<const T*>(volume.data), volume.dims, value_range, channels, taps[0], along_x.data());
+      moments_along_x<T>(volume, value_range, clip_planes_, channels, taps[0], along_x.data());
     });
     std::vector<float> along_y = allocate(ivec3(d0.x, d0.y, volume.dims.z), channels, "occlusion map");
     resample_axis(along_x.data(), along_y.data(), volume.dims.z, std::int64_t(d0.x) * channels, taps[1]);

@@ -35,8 +35,11 @@ class MomentPyramid {
  public:
   MomentPyramid() = default;
   // value_range: the data values mapped to u = 0 and u = 1 (the volume's
-  // range). Non-finite voxels count as u = 0. Checks the memory budget first.
-  MomentPyramid(const VolumeView& volume, vec2 value_range, const MomentPyramidSettings& settings);
+  // range). Non-finite voxels, and voxels outside a clip plane (a vec4 n, d:
+  // kept where dot(n, p) + d >= 0), count as u = 0. Checks the memory budget
+  // first.
+  MomentPyramid(const VolumeView& volume, vec2 value_range, const MomentPyramidSettings& settings,
+                std::vector<vec4> clip_planes = {});
 
   bool empty() const { return levels_.empty(); }
   const MomentPyramidSettings& settings() const { return settings_; }
@@ -45,6 +48,7 @@ class MomentPyramid {
   ivec3 level_dims(int level) const { return level_dims_[std::size_t(level)]; }
   const std::vector<float>& level(int level) const { return levels_[std::size_t(level)]; }
   vec2 value_range() const { return value_range_; }
+  const std::vector<vec4>& clip_planes() const { return clip_planes_; }
   // Standard deviation of level k's Gaussian region in world units.
   float sigma_world(int level) const;
   std::uint64_t bytes() const;
@@ -79,6 +83,7 @@ class MomentPyramid {
   vec3 spacing_{1.0f};
   vec3 origin_{0.0f};
   vec2 value_range_{0.0f, 1.0f};
+  std::vector<vec4> clip_planes_;
   std::vector<ivec3> level_dims_;
   std::vector<std::vector<float>> levels_;
   std::vector<std::array<ResamplingTaps, 3>> taps_;  // per level, per axis: from the level above (or the data)

@@ -29,9 +29,10 @@ class OcclusionMap final : public Technique {
 
     const std::uint64_t data_version = scene.versions().data;
     const bool data_changed = data_version != data_version_;
-    if (data_changed || pyramid_.empty() || !(settings == pyramid_.settings())) {
+    if (data_changed || pyramid_.empty() || !(settings == pyramid_.settings()) ||
+        scene.clip_planes() != pyramid_.clip_planes()) {
       const ValueRange range = scene.volume().value_range();
-      pyramid_ = MomentPyramid(scene.volume_view(), vec2(range.min, range.max), settings);
+      pyramid_ = MomentPyramid(scene.volume_view(), vec2(range.min, range.max), settings, scene.clip_planes());
       data_version_ = data_version;
       ++rebuilds_;
     }

@@ -30,8 +30,8 @@
 //   resolution         level 0 grid as a fraction of the data grid
 //   kernel_size        taps of level 0's Gaussian at level-0 resolution (odd)
 // Passes
-//   prepare: the moment pyramid, only when the data or the three map
-//            parameters (moments, resolution, kernel_size) change (rebuilds()
+//   prepare: the moment pyramid, only when the data, the clip planes or the
+//            three map parameters (moments, resolution, kernel_size) change (rebuilds()
 //            counts these builds); a per-macrocell iso flag grid when the
 //            iso-value changes (a few thousand comparisons)
 //   render:  iso: one ray per pixel to the first crossing, refined by binary
@@ -41,8 +41,9 @@
 //            loop with the AO per sample.
 // Outside the volume's box nothing occludes: a region reaching past the box
 // counts only its inside share (occlusion_queries.h).
-// Limits: clip planes cut the surface and the hard-shadow rays but not the
-// map (clipped material still occludes in AO and soft shadows).
+// Clip planes cut the surface, the hard-shadow rays and the map: clipped
+// voxels enter the moments as air, so clipped material occludes nothing (a
+// change of clip planes rebuilds the pyramid).
 #include "penumbra/render/technique.h"
 
 namespace penumbra {

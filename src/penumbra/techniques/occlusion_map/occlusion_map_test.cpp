@@ -162,6 +162,32 @@ TEST(OcclusionMapAmbient, InUnitIntervalUnoccludedOutsideASphereDarkerInsideACup
   EXPECT_GE(inside_mean, inside);  // the mean of the levels' occlusion is at most their max
 }
 
+// Clipped material occludes nothing (clip planes apply to every light-space
+// structure): with the cup's tube cut away above z = -11.5, the inside of its
+// bottom sees the open sky like the outside does; unclipped it is the dark
+// 0.7 of the test above.
+TEST(OcclusionMapAmbient, ClippedMaterialDoesNotOcclude) {
+  const auto cup = field_volume(48, [](vec3 p) {
+    const float r = glm::length(vec2(p.x, p.y));
+    const float tube = glm::max(6.0f - r, r - 10.0f);
+    const float plate = glm::max(glm::max(-16.0f - p.z, p.z + 12.0f), r - 10.0f);
+    return solid(glm::max(glm::min(tube, plate), glm::max(-16.0f - p.z, p.z - 16.0f)));
+  });
+  const std::vector<vec4> keep_below{vec4(0.0f, 0.0f, -1.0f, -11.5f)};  // -z - 11.5 >= 0
+  const MomentPyramid clipped(cup->view(), vec2(0.0f, 1.0f), MomentPyramidSettings{}, keep_below);
+  const MomentPyramid whole(cup->view(), vec2(0.0f, 1.0f), MomentPyramidSettings{});
+  OcclusionQueries<2> q;
+  q.box = cup->world_box();
+  q.pyramid = whole.view<2>();
+  const float inside_whole = q.ambient(vec3(0.0f, 0.0f, -12.0f), vec3(0.0f, 0.0f, 1.0f), 1.0f);
+  q.pyramid = clipped.view<2>();
+  const float inside_clipped = q.ambient(vec3(0.0f, 0.0f, -12.0f), vec3(0.0f, 0.0f, 1.0f), 1.0f);
+  std::printf("[occlusion-map ao] cup bottom inside: %.4f whole, %.4f with the tube clipped away\n", inside_whole,
+              inside_clipped);
+  EXPECT_LT(inside_whole, 0.8f);
+  EXPECT_GT(inside_clipped, 0.95f);
+}
+
 // Fig. 7: the occlusion query is the value half a voxel under the surface,
 // not the iso-value. A ball with a 4-voxel ramp (v = 1 at radius 6, 0 at 10)
 // cut at iso 0.1 has its surface on the ramp, where the region in front of a
@@ -319,7 +345,7 @@ TEST(OcclusionMapRender, SoftShadowsApproachHardShadowsAsTheLightShrinks) {
 
 // The map depends on the data only: iso-value and TF changes rebuild nothing;
 // the data and the map's own parameters do.
-TEST(OcclusionMapTechnique, RebuildsOnlyForDataAndMapParameters) {
+TEST(OcclusionMapTechnique, RebuildsOnlyForDataClipPlanesAndMapParameters) {
   Scene scene = procedural_scene("spheres", ivec3(32), 16);
   const TechniqueInfo& info = find_technique("occlusion-map");
   ParameterValues params(info.parameters);
@@ -347,6 +373,15 @@ TEST(OcclusionMapTechnique, RebuildsOnlyForDataAndMapParameters) {
   scene.set_volume(make_procedural_volume("shell", ivec3(32)));
   technique->prepare(scene, params);
   EXPECT_EQ(technique->rebuilds(), 3u);
+  technique->render(scene, image);
+
+  // Clip planes shape the map; floor planes do not.
+  scene.set_planes({Plane{vec3(0.0f, 0.0f, -40.0f), vec3(0.0f, 0.0f, 1.0f), vec3(0.8f)}});
+  technique->prepare(scene, params);
+  EXPECT_EQ(technique->rebuilds(), 3u);
+  scene.set_clip_planes({vec4(1.0f, 0.0f, 0.0f, 0.0f)});
+  technique->prepare(scene, params);
+  EXPECT_EQ(technique->rebuilds(), 4u);
   technique->render(scene, image);
 }
 
