@@ -1,6 +1,6 @@
 #include "penumbra/techniques/cone_shadows/cone_shadows.h"
 
-#include "penumbra/render/lighting.h"
+#include "penumbra/render/render_lit.h"
 #include "penumbra/render/scene_resources.h"
 #include "penumbra/techniques/cone_shadows/cone_march.h"
 #include "penumbra/techniques/sat_common/visibility_cache.h"
@@ -57,12 +57,9 @@ class ConeShadows final : public Technique {
     const Shading shading = scene.material().shading;
     if (caches_built_) {
       const CachedConeMarch cached{cone_, cache_views_.data()};
-      render_image(
-          view, [&](const auto&) { return ScatteringLighting<CachedConeMarch>{&view, cached, shading}; }, image,
-          stats);
+      render_lit(view, cached, shading, image, stats);
     } else {
-      render_image(
-          view, [&](const auto&) { return ScatteringLighting<ConeMarch>{&view, cone_, shading}; }, image, stats);
+      render_lit(view, cone_, shading, image, stats);
     }
   }
 

@@ -1,6 +1,6 @@
 #include "penumbra/techniques/filtered_sat/filtered_sat.h"
 
-#include "penumbra/render/lighting.h"
+#include "penumbra/render/render_lit.h"
 #include "penumbra/render/scene_resources.h"
 #include "penumbra/techniques/filtered_sat/filtered_visibility.h"
 #include "penumbra/techniques/sat_common/visibility_cache.h"
@@ -66,13 +66,9 @@ class FilteredSat final : public Technique {
     const FilteredVisibility direct{tables_.lookups().data(), filter_};
     if (caches_built_) {
       const CachedFilteredVisibility cached{direct, cache_views_.data(), view.box};
-      render_image(
-          view, [&](const auto&) { return ScatteringLighting<CachedFilteredVisibility>{&view, cached, shading}; },
-          image, stats);
+      render_lit(view, cached, shading, image, stats);
     } else {
-      render_image(
-          view, [&](const auto&) { return ScatteringLighting<FilteredVisibility>{&view, direct, shading}; }, image,
-          stats);
+      render_lit(view, direct, shading, image, stats);
     }
   }
 

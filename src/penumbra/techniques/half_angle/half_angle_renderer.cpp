@@ -3,7 +3,7 @@
 #include "penumbra/base/error.h"
 #include "penumbra/base/memory_budget.h"
 #include "penumbra/base/parallel.h"
-#include "penumbra/render/lighting.h"
+#include "penumbra/render/render_lit.h"
 #include "penumbra/techniques/half_angle/half_angle_kernels.h"
 #include "penumbra/techniques/ipsvi/sweep_renderer.h"
 
@@ -108,8 +108,7 @@ void HalfAngleRenderer::render(const Scene& scene, Image& image, RenderStats* st
     if (l.type != LightType::Environment) lights.push_back(&l);
   }
   if (lights.empty()) {
-    render_image(view, [&](const auto&) { return ScatteringLighting<NoShadows>{&view, {}, view.material.shading}; },
-                 image, stats);
+    render_lit(view, NoShadows{}, view.material.shading, image, stats);
     return;
   }
   const int width = view.width, height = view.height;

@@ -3,7 +3,7 @@
 #include "penumbra/base/error.h"
 #include "penumbra/base/memory_budget.h"
 #include "penumbra/base/parallel.h"
-#include "penumbra/render/lighting.h"
+#include "penumbra/render/render_lit.h"
 #include "penumbra/techniques/ipsvi/ipsvi_ray.h"
 
 #include <algorithm>
@@ -86,8 +86,7 @@ void IpsviRenderer::render(const Scene& scene, Image& image, RenderStats* stats)
   counts_ = IpsviFrameCounts{};
   if (lights_.empty()) {
     // Nothing casts shadows: ambient only, through the shared loop.
-    render_image(view, [&](const auto&) { return ScatteringLighting<NoShadows>{&view, {}, view.material.shading}; },
-                 image, stats);
+    render_lit(view, NoShadows{}, view.material.shading, image, stats);
     if (stats) counts_.view_samples = stats->samples;
     return;
   }

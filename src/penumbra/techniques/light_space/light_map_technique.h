@@ -4,8 +4,7 @@
 // derived class reads its parameters, calls update_maps() with the values
 // that shape its maps and a builder, and renders through render_lit() with
 // its Visibility functor over views().
-#include "penumbra/render/lighting.h"
-#include "penumbra/render/render_loop.h"
+#include "penumbra/render/render_lit.h"
 #include "penumbra/render/scene_resources.h"
 #include "penumbra/render/technique.h"
 #include "penumbra/techniques/light_space/light_map_set.h"
@@ -42,11 +41,7 @@ class LightMapTechnique : public Technique {
   template <class Visibility>
   void render_lit(const Scene& scene, const Visibility& visibility, Image& image, RenderStats* stats) {
     maps_.check_ready(scene);
-    const RenderView view = resources_.view(scene);
-    const Shading shading = scene.material().shading;
-    render_image(
-        view, [&](const auto&) { return ScatteringLighting<Visibility>{&view, visibility, shading}; }, image,
-        stats);
+    penumbra::render_lit(resources_.view(scene), visibility, scene.material().shading, image, stats);
   }
 
  private:

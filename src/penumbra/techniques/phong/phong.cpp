@@ -1,6 +1,6 @@
 #include "penumbra/techniques/phong/phong.h"
 
-#include "penumbra/render/lighting.h"
+#include "penumbra/render/render_lit.h"
 #include "penumbra/render/scene_resources.h"
 
 namespace penumbra {
@@ -12,8 +12,7 @@ class Phong final : public Technique {
 
   void render(const Scene& scene, Image& image, RenderStats* stats) override {
     const RenderView view = resources_.view(scene);
-    render_image(
-        view, [&](const auto&) { return ScatteringLighting<NoShadows>{&view, {}, Shading::Phong}; }, image, stats);
+    render_lit(view, NoShadows{}, Shading::Phong, image, stats);
   }
 
   std::uint64_t aux_bytes() const override { return 0; }

@@ -1,6 +1,6 @@
 #include "penumbra/techniques/sat_ao/sat_ao.h"
 
-#include "penumbra/render/lighting.h"
+#include "penumbra/render/render_lit.h"
 #include "penumbra/render/scene_resources.h"
 #include "penumbra/techniques/sat_ao/ambient_occlusion.h"
 #include "penumbra/techniques/sat_common/visibility_cache.h"
@@ -45,13 +45,9 @@ class SatAo final : public Technique {
     const Shading shading = scene.material().shading;
     if (cache_) {
       const CachedAmbientOcclusion cached{occlusion_, cache_->view(), view.box};
-      render_image(
-          view, [&](const auto&) { return ScatteringLighting<CachedAmbientOcclusion>{&view, cached, shading}; },
-          image, stats);
+      render_lit(view, cached, shading, image, stats);
     } else {
-      render_image(
-          view, [&](const auto&) { return ScatteringLighting<AmbientOcclusion>{&view, occlusion_, shading}; }, image,
-          stats);
+      render_lit(view, occlusion_, shading, image, stats);
     }
   }
 
