@@ -17,7 +17,7 @@ class ConeShadows final : public Technique {
     const bool shared_changed = resources_.update(scene);
     const bool table_rebuilt = table_.update(scene, resources_, shared_changed, params.number("sat_resolution"));
     if (table_rebuilt) {
-      clear_caches();
+      caches_.clear();
       ++rebuilds_;
     }
     const float voxel = scene.volume().view().min_spacing();
@@ -28,26 +28,18 @@ class ConeShadows final : public Technique {
                       float(params.number("step_voxels")) * voxel,
                       float(params.number("shadow_density_scale"))};
     if (!params.flag("shadow_cache")) {
-      clear_caches();
+      caches_.clear();
       return;
     }
     ParameterValues cache_params = params;
     cache_params.set("sat_resolution", params.table().at("sat_resolution").default_value);
-    if (caches_built_ && cache_params == cache_params_ && scene.versions().lights == lights_version_) return;
-    clear_caches();
-    const ivec3 dims = visibility_cache_dims(scene.volume().dims(), float(params.number("cache_resolution")));
+    if (caches_.current(cache_params) && scene.versions().lights == lights_version_) return;
+    const std::vector<Light>& lights = scene.lights();
     const ConeMarch cone = cone_;
-    cache_views_.assign(scene.lights().size(), VolumeView{});
-    for (std::size_t i = 0; i < scene.lights().size(); ++i) {
-      const Light& light = scene.lights()[i];
-      if (light.type == LightType::Environment) continue;
-      caches_.push_back(build_visibility_cache(cone.box, dims, [&](vec3 p) {
-        return cone.transmittance(p, sample_light(light, p));
-      }));
-      cache_views_[i] = caches_.back().view();
-    }
-    caches_built_ = true;
-    cache_params_ = cache_params;
+    caches_.build(
+        lights.size(), cone.box, visibility_cache_dims(scene.volume().dims(), float(params.number("cache_resolution"))),
+        cache_params, [&](std::size_t i) { return lights[i].type != LightType::Environment; },
+        [&](std::size_t i, vec3 p) { return cone.transmittance(p, sample_light(lights[i], p)); });
     lights_version_ = scene.versions().lights;
     ++rebuilds_;
   }
@@ -55,37 +47,24 @@ class ConeShadows final : public Technique {
   void render(const Scene& scene, Image& image, RenderStats* stats) override {
     const RenderView view = resources_.view(scene);
     const Shading shading = scene.material().shading;
-    if (caches_built_) {
-      const CachedConeMarch cached{cone_, cache_views_.data()};
+    if (caches_.built()) {
+      const CachedConeMarch cached{cone_, caches_.views()};
       render_lit(view, cached, shading, image, stats);
     } else {
       render_lit(view, cone_, shading, image, stats);
     }
   }
 
-  std::uint64_t aux_bytes() const override {
-    std::uint64_t bytes = table_.bytes();
-    for (const Volume& c : caches_) bytes += c.total_bytes();
-    return bytes;
-  }
+  std::uint64_t aux_bytes() const override { return table_.bytes() + caches_.bytes(); }
   // Table builds and cache builds count one each.
   std::uint64_t rebuilds() const override { return rebuilds_; }
 
  private:
-  void clear_caches() {
-    caches_.clear();
-    cache_views_.clear();
-    caches_built_ = false;
-  }
-
   SceneResources resources_;
   VolumeAlignedTable table_{"cone-shadows summed-area table"};
   ConeMarch cone_;
-  std::vector<Volume> caches_;
-  std::vector<VolumeView> cache_views_;  // one per light
-  bool caches_built_ = false;
-  ParameterValues cache_params_;
-  std::uint64_t lights_version_ = 0;
+  LightVisibilityCaches caches_;
+  std::uint64_t lights_version_ = 0;  // what the caches were built for
   std::uint64_t rebuilds_ = 0;
 };
 

@@ -27,7 +27,7 @@ class FilteredSat final : public Technique {
                               v.geometry != geometry_version_ || resolution != table_resolution_;
     if (tables_stale) {
       tables_built_ = false;
-      clear_caches();
+      caches_.clear();
       tables_.build(resources_.shadow_view(scene), scene.lights(), voxel / float(resolution));
       tables_built_ = true;
       lights_version_ = v.lights;
@@ -36,27 +36,20 @@ class FilteredSat final : public Technique {
       ++rebuilds_;
     }
     if (!params.flag("shadow_cache")) {
-      clear_caches();
+      caches_.clear();
       return;
     }
     // The caches depend on the tables and on every parameter but the table
     // resolution (already covered by tables_stale).
     ParameterValues cache_params = params;
     cache_params.set("sat_resolution", params.table().at("sat_resolution").default_value);
-    if (caches_built_ && !tables_stale && cache_params == cache_params_) return;
-    clear_caches();
+    if (!tables_stale && caches_.current(cache_params)) return;
     const FilteredVisibility direct{tables_.lookups().data(), filter_};
-    const ivec3 dims = visibility_cache_dims(scene.volume().dims(), float(params.number("cache_resolution")));
-    const Box3 box = scene.volume().world_box();
-    cache_views_.assign(tables_.lookups().size(), VolumeView{});
-    for (std::size_t light = 0; light < tables_.lookups().size(); ++light) {
-      if (tables_.lookups()[light].kind == LightTableKind::None) continue;
-      caches_.push_back(
-          build_visibility_cache(box, dims, [&](vec3 p) { return direct.transmittance(int(light), p); }));
-      cache_views_[light] = caches_.back().view();
-    }
-    caches_built_ = true;
-    cache_params_ = cache_params;
+    caches_.build(
+        tables_.lookups().size(), scene.volume().world_box(),
+        visibility_cache_dims(scene.volume().dims(), float(params.number("cache_resolution"))), cache_params,
+        [&](std::size_t light) { return tables_.lookups()[light].kind != LightTableKind::None; },
+        [&](std::size_t light, vec3 p) { return direct.transmittance(int(light), p); });
     ++rebuilds_;
   }
 
@@ -64,30 +57,20 @@ class FilteredSat final : public Technique {
     const RenderView view = resources_.view(scene);
     const Shading shading = scene.material().shading;
     const FilteredVisibility direct{tables_.lookups().data(), filter_};
-    if (caches_built_) {
-      const CachedFilteredVisibility cached{direct, cache_views_.data(), view.box};
+    if (caches_.built()) {
+      const CachedFilteredVisibility cached{direct, caches_.views(), view.box};
       render_lit(view, cached, shading, image, stats);
     } else {
       render_lit(view, direct, shading, image, stats);
     }
   }
 
-  std::uint64_t aux_bytes() const override {
-    std::uint64_t bytes = tables_.bytes();
-    for (const Volume& c : caches_) bytes += c.total_bytes();
-    return bytes;
-  }
+  std::uint64_t aux_bytes() const override { return tables_.bytes() + caches_.bytes(); }
 
   // Table builds and cache builds count one each.
   std::uint64_t rebuilds() const override { return rebuilds_; }
 
  private:
-  void clear_caches() {
-    caches_.clear();
-    cache_views_.clear();
-    caches_built_ = false;
-  }
-
   SceneResources resources_;
   ShadowFilter filter_;
   LightTables tables_;
@@ -95,10 +78,7 @@ class FilteredSat final : public Technique {
   std::uint64_t lights_version_ = 0;
   std::uint64_t geometry_version_ = 0;
   double table_resolution_ = 0.0;
-  std::vector<Volume> caches_;  // one per light with a table
-  std::vector<VolumeView> cache_views_;  // one per light
-  bool caches_built_ = false;
-  ParameterValues cache_params_;
+  LightVisibilityCaches caches_;  // one per light with a table
   std::uint64_t rebuilds_ = 0;
 };
 
