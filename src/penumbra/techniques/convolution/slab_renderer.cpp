@@ -19,6 +19,7 @@ constexpr int kMaxSlabs = 16384;
 struct PixelState {
   vec3 color{0.0f};
   float transmittance = 1.0f;
+  vec3 ray_dir{0.0f, 0.0f, 1.0f};  // the pixel's viewing ray (along forward for an orthographic camera)
   float ray_cos = 1.0f;  // viewing ray . forward
   float z_in = 0.0f, z_out = -1.0f;  // depth interval inside box and clip planes
   float z_plane = kInfinity;
@@ -91,6 +92,7 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
     for (int x = 0; x < width; ++x) {
       PixelState& p = px[std::size_t(x) + std::size_t(width) * std::size_t(y)];
       const Ray ray = cam.pixel_ray(float(x) + 0.5f, float(y) + 0.5f, width, height);
+      p.ray_dir = ray.direction;
       p.ray_cos = glm::dot(ray.direction, cam.forward);
       float t_plane = kInfinity;
       p.plane = nearest_plane(view, ray, kInfinity, t_plane);
@@ -183,7 +185,7 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
                   vis[s] = buffer(slot_of[s], current)[i] * exp_nonpositive(-sigma_shadow * half_path);
                 }
                 const float alpha = 1.0f - exp_nonpositive(-c.a * (s1 - s0) / p.ray_cos);
-                const SamplePoint sp{pos, index, value, vec3(c), c.a, glm::normalize(pos - cam.eye)};
+                const SamplePoint sp{pos, index, value, vec3(c), c.a, p.ray_dir};
                 const vec3 lit = ScatteringLighting<BufferVisibility>{&view, {vis}, view.material.shading}.sample(sp);
                 p.color += (p.transmittance * alpha) * lit;
                 p.transmittance *= 1.0f - alpha;
