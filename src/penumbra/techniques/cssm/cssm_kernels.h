@@ -90,10 +90,9 @@ struct CssmVisibility {
     const LightMapView& map = maps[light];
     LightMapPoint q;
     if (!map.projection.locate(p, q)) return vec3(1.0f);
-    const float scale = float(map.projection.resolution) / kCssmOffsetResolution;
     vec3 lit(0.0f);
     for (int j = 0; j < offset_count; ++j) {
-      const vec2 t = glm::floor(q.texel + scale * offsets[j]);
+      const vec2 t = glm::floor(q.texel + offset(map, j));
       const float* depth = map.texel(q.face, int(t.x), int(t.y));
       if (!depth) {
         lit += 1.0f;
