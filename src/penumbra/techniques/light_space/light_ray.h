@@ -51,7 +51,8 @@ PENUMBRA_HD std::uint64_t march_light_ray(const RenderView& v, const Sampler& sa
   float t;
   while (cursor.next(k, t)) {
     ++samples;
-    const vec4 c = tf.lookup(sampler(o + t * d));
+    const float value = sampler(o + t * d);
+    const vec4 c = Sampler::kAlwaysFinite ? tf.lookup_finite(value) : tf.lookup(value);
     if (c.a <= 0.0f) continue;
     const float length = grid.length(k);
     const LightSegment segment{grid.start(k), length, 1.0f - exp_nonpositive(-c.a * length),

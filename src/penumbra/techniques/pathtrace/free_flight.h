@@ -48,7 +48,8 @@ PENUMBRA_HD bool delta_tracking(const RenderView& v, const Sampler& sampler, con
       t += exponential_step(rng, majorant);
       if (t >= b) return true;
       ++lookups;
-      const vec4 medium = tf.lookup(sampler(o + t * d));
+      const float value = sampler(o + t * d);
+      const vec4 medium = Sampler::kAlwaysFinite ? tf.lookup_finite(value) : tf.lookup(value);
       if (rng.next_float() * majorant < medium.a) {
         hit = Collision{t, vec3(medium), medium.a};
         collided = true;
@@ -81,7 +82,8 @@ PENUMBRA_HD float ratio_tracking(const RenderView& v, const Sampler& sampler, co
       t += exponential_step(rng, majorant);
       if (t >= b) return true;
       ++lookups;
-      const float sigma = tf.lookup(sampler(o + t * d)).a;
+      const float value = sampler(o + t * d);
+      const float sigma = (Sampler::kAlwaysFinite ? tf.lookup_finite(value) : tf.lookup(value)).a;
       transmittance *= glm::max(0.0f, 1.0f - sigma / majorant);
       if (transmittance < kRatioRouletteThreshold) {
         if (rng.next_float() * kRatioRouletteThreshold >= transmittance) {
