@@ -159,7 +159,7 @@ TEST(OcclusionMapAmbient, InUnitIntervalUnoccludedOutsideASphereDarkerInsideACup
               outside);
   EXPECT_GT(outside, 0.95f);
   EXPECT_LT(inside, outside - 0.2f);
-  EXPECT_GE(inside_mean, inside);  // the mean of the levels' occlusion is at most their max
+  EXPECT_LT(inside_mean, outside - 0.05f);  // the mean of the four levels still sees the walls
 }
 
 // Clipped material occludes nothing (clip planes apply to every light-space
