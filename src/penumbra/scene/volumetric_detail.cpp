@@ -1,4 +1,4 @@
-#include "penumbra/techniques/convolution/procedural_detail.h"
+#include "penumbra/scene/volumetric_detail.h"
 
 #include "penumbra/base/rng.h"
 
