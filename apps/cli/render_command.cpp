@@ -42,6 +42,10 @@ void run_render(const RenderOptions& options) {
     if (!options.scene.demo) throw InvalidArgument("-o", "an output file is required (.png or .exr)");
     output = "penumbra-demo.png";
   }
+  if (!scene.meshes().empty() && !info.draws_meshes) {
+    fmt::print(stderr, "penumbra: warning: {} does not draw the scene's {} mesh(es); convolution does\n", info.name,
+               scene.meshes().size());
+  }
   using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();
   auto t = info.create();

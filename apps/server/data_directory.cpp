@@ -37,6 +37,20 @@ bool DataDirectory::inside_root(const fs::path& real_path) const {
 }
 
 fs::path DataDirectory::resolve_volume(std::string_view relative, const std::string& key) const {
+  return resolve(relative, key, &DataDirectory::is_volume_file_name, "volume");
+}
+
+fs::path DataDirectory::resolve_mesh(std::string_view relative, const std::string& key) const {
+  auto is_mesh = [](std::string_view name) {
+    std::string lower(name);
+    std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return lower.size() > 4 && (lower.ends_with(".obj") || lower.ends_with(".ply"));
+  };
+  return resolve(relative, key, +is_mesh, "mesh");
+}
+
+fs::path DataDirectory::resolve(std::string_view relative, const std::string& key, bool (*accept)(std::string_view),
+                                const char* kind) const {
   if (!available()) throw HttpError(404, key, "the server has no data folder (start it with --data DIR)");
   if (relative.empty()) throw HttpError(400, key, "empty path");
   if (relative.size() > 1024) throw HttpError(400, key, "path too long");
@@ -57,8 +71,8 @@ fs::path DataDirectory::resolve_volume(std::string_view relative, const std::str
   if (ec || !inside_root(real)) throw HttpError(403, key, fmt::format("'{}' lies outside the data folder", relative));
   if (!fs::exists(real, ec)) throw HttpError(404, key, fmt::format("'{}': no such file in the data folder", relative));
   if (!fs::is_regular_file(real, ec)) throw HttpError(400, key, fmt::format("'{}' is not a file", relative));
-  if (!is_volume_file_name(real.filename().string()) || !is_volume_file_name(path.filename().string())) {
-    throw HttpError(415, key, fmt::format("'{}' is not a supported volume file", relative));
+  if (!accept(real.filename().string()) || !accept(path.filename().string())) {
+    throw HttpError(415, key, fmt::format("'{}' is not a supported {} file", relative, kind));
   }
   return real;
 }

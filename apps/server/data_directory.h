@@ -31,6 +31,8 @@ class DataDirectory {
   // that resolves outside the root, 404 for a missing file, 415 for a file
   // that is not a supported volume format. `key` names the request field.
   std::filesystem::path resolve_volume(std::string_view relative, const std::string& key) const;
+  // The same for a mesh file (.obj or .ply; 415 for anything else).
+  std::filesystem::path resolve_mesh(std::string_view relative, const std::string& key) const;
 
   // Every supported volume file under the root (at most `max_depth` folders
   // deep), sorted by path; files whose real location is outside the root are
@@ -42,6 +44,9 @@ class DataDirectory {
 
  private:
   bool inside_root(const std::filesystem::path& real_path) const;
+  // The checks both resolve_* share; `accept` says whether a file name has the right kind.
+  std::filesystem::path resolve(std::string_view relative, const std::string& key, bool (*accept)(std::string_view),
+                                const char* kind) const;
 
   std::filesystem::path root_;  // canonical
 };

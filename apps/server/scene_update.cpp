@@ -65,6 +65,10 @@ ClientScene parse_client_scene(const json& scene_json, const DataDirectory& data
              })
         .volume;
   };
+  // Mesh files and mesh texture volumes, like volumes, only from the data folder.
+  options.resolve_file = [&](const std::string& file, const std::string& key) {
+    return key.ends_with(".texture") ? data.resolve_volume(file, key) : data.resolve_mesh(file, key);
+  };
   out.scene = parse_scene(scene_json.dump(), data.root(), options);
   check_technique(out.scene);
   return out;
@@ -94,6 +98,7 @@ bool SceneState::apply(const ClientScene& next) {
   if (changed("planes")) scene_.set_planes(s.planes());
   if (changed("clip_planes")) scene_.set_clip_planes(s.clip_planes());
   if (changed("render")) scene_.set_render(s.render());
+  if (changed("meshes")) scene_.set_meshes(s.meshes());
   json_ = next.json;
   volume_key_ = next.volume_key;
   return data_changed;

@@ -1,7 +1,9 @@
 #include "penumbra/io/scene_json.h"
 
 #include "penumbra/base/error.h"
+#include "penumbra/io/json_reader.h"
 #include "penumbra/io/paraview_preset.h"
+#include "penumbra/io/scene_json_meshes.h"
 #include "penumbra/io/volume_reader.h"
 #include "penumbra/volume/procedural.h"
 
@@ -16,86 +18,10 @@ namespace penumbra {
 namespace {
 
 using nlohmann::json;
-
-std::string type_name(const json& j) {
-  if (j.is_number()) return "a number";
-  if (j.is_string()) return "a string";
-  if (j.is_boolean()) return "a boolean";
-  if (j.is_array()) return "an array";
-  if (j.is_object()) return "an object";
-  return "null";
-}
-
-// One JSON object being read: checks that every key it holds is known and
-// converts values with errors that name the full key path.
-class ObjectReader {
- public:
-  ObjectReader(const json& j, std::string path, std::initializer_list<const char*> known) : j_(j), path_(std::move(path)) {
-    if (!j.is_object()) throw InvalidScene(path_.empty() ? "(root)" : path_, "expected an object, got " + type_name(j));
-    for (const auto& item : j.items()) {
-      bool ok = false;
-      for (const char* k : known) ok = ok || item.key() == k;
-      if (!ok) {
-        std::string list;
-        for (const char* k : known) list += fmt::format("{}{}", list.empty() ? "" : ", ", k);
-        throw InvalidScene(key(item.key()), fmt::format("unknown key (known here: {})", list));
-      }
-    }
-  }
-
-  std::string key(const std::string& name) const { return path_.empty() ? name : path_ + "." + name; }
-  bool has(const char* name) const { return j_.contains(name); }
-  const json& at(const char* name) const { return j_.at(name); }
-
-  float number(const char* name, float fallback) const {
-    if (!has(name)) return fallback;
-    return to_float(at(name), key(name));
-  }
-  int integer(const char* name, int fallback) const {
-    if (!has(name)) return fallback;
-    const json& v = at(name);
-    if (!v.is_number_integer()) throw InvalidScene(key(name), "expected an integer, got " + type_name(v));
-    const auto i = v.get<std::int64_t>();
-    if (i < -(1 << 30) || i > (1 << 30)) throw InvalidScene(key(name), "integer out of range");
-    return int(i);
-  }
-  bool boolean(const char* name, bool fallback) const {
-    if (!has(name)) return fallback;
-    const json& v = at(name);
-    if (!v.is_boolean()) throw InvalidScene(key(name), "expected true or false, got " + type_name(v));
-    return v.get<bool>();
-  }
-  std::string string(const char* name, const std::string& fallback) const {
-    if (!has(name)) return fallback;
-    const json& v = at(name);
-    if (!v.is_string()) throw InvalidScene(key(name), "expected a string, got " + type_name(v));
-    return v.get<std::string>();
-  }
-  vec3 vector3(const char* name, vec3 fallback) const {
-    if (!has(name)) return fallback;
-    return to_vec3(at(name), key(name));
-  }
-
-  static float to_float(const json& v, const std::string& key) {
-    if (!v.is_number()) throw InvalidScene(key, "expected a number, got " + type_name(v));
-    const double d = v.get<double>();
-    if (!std::isfinite(d) || std::abs(d) > 3.0e38) throw InvalidScene(key, "number out of range");
-    return float(d);
-  }
-  static vec3 to_vec3(const json& v, const std::string& key) {
-    if (!v.is_array() || v.size() != 3) throw InvalidScene(key, "expected an array of 3 numbers");
-    return vec3(to_float(v[0], key + "[0]"), to_float(v[1], key + "[1]"), to_float(v[2], key + "[2]"));
-  }
-
- private:
-  const json& j_;
-  std::string path_;
-};
-
-std::filesystem::path resolve(const std::filesystem::path& base_dir, const std::string& file) {
-  const std::filesystem::path p(file);
-  return p.is_absolute() ? p : base_dir / p;
-}
+using json_reader::ObjectReader;
+using json_reader::read_transfer_function;
+using json_reader::resolve;
+using json_reader::type_name;
 
 void read_volume_section(const json& j, const std::filesystem::path& base_dir, const SceneParseOptions& options,
                          Scene& scene) {
@@ -133,7 +59,9 @@ void read_volume_section(const json& j, const std::filesystem::path& base_dir, c
   scene.set_volume_source(std::move(source));
 }
 
-TransferFunction read_transfer_function(const json& j, const std::string& section,
+}  // namespace
+
+TransferFunction json_reader::read_transfer_function(const json& j, const std::string& section,
                                         const std::filesystem::path& base_dir, const SceneParseOptions& options) {
   const ObjectReader r(j, section, {"points", "preset", "range", "unit_length", "density_scale"});
   TransferFunction tf;
@@ -193,6 +121,8 @@ TransferFunction read_transfer_function(const json& j, const std::string& sectio
   tf.set_density_scale(density);
   return tf;
 }
+
+namespace {
 
 Camera read_camera(const json& j, const Box3& box) {
   const ObjectReader r(j, "camera", {"eye", "target", "up", "fov_deg", "projection", "height"});
@@ -400,7 +330,7 @@ Scene parse_scene(std::string_view json_text, const std::filesystem::path& base_
     throw InvalidScene("(root)", fmt::format("not valid JSON: {}", e.what()));
   }
   const ObjectReader r(j, "", {"version", "volume", "transfer_function", "shadow_transfer_function", "camera",
-                              "lights", "material", "render", "planes", "clip_planes", "background"});
+                              "lights", "material", "render", "planes", "clip_planes", "background", "meshes"});
   if (r.integer("version", 1) != 1) throw InvalidScene("version", "only scene version 1 is supported");
   if (!r.has("volume")) throw InvalidScene("volume", "missing: a scene needs a volume (\"file\" or \"builtin\")");
   Scene scene;
@@ -412,7 +342,8 @@ Scene parse_scene(std::string_view json_text, const std::filesystem::path& base_
     scene.set_shadow_transfer_function(
         read_transfer_function(r.at("shadow_transfer_function"), "shadow_transfer_function", base_dir, options));
   }
-  const Box3 box = scene.volume().world_box();
+  if (r.has("meshes")) scene.set_meshes(json_reader::read_meshes(r.at("meshes"), base_dir, options));
+  const Box3 box = scene.scene_box();
   scene.set_camera(read_camera(r.has("camera") ? r.at("camera") : json::object(), box));
   scene.set_lights(r.has("lights") ? read_lights(r.at("lights")) : default_lights());
   if (r.has("material")) scene.set_material(read_material(r.at("material")));
@@ -433,7 +364,6 @@ Scene load_scene(const std::filesystem::path& path) {
 
 namespace {
 
-json to_json(vec3 v) { return json::array({v.x, v.y, v.z}); }
 
 // The scene holds floats; written as doubles they would print as
 // 0.20000000298023224. Replace each by the double nearest to the float's
@@ -446,7 +376,9 @@ void shorten_floats(json& j) {
   }
 }
 
-json to_json(const TransferFunction& tf) {
+}  // namespace
+
+json json_reader::to_json(const TransferFunction& tf) {
   json points = json::array();
   for (const TransferFunctionPoint& p : tf.points()) points.push_back({p.value, p.color.r, p.color.g, p.color.b, p.alpha});
   json out{{"points", points}, {"density_scale", tf.density_scale()}};
@@ -455,7 +387,7 @@ json to_json(const TransferFunction& tf) {
   return out;
 }
 
-}  // namespace
+using json_reader::to_json;
 
 std::string write_scene_json(const Scene& scene) {
   json j;
@@ -537,6 +469,7 @@ std::string write_scene_json(const Scene& scene) {
   for (const vec4& c4 : scene.clip_planes()) clips.push_back({c4.x, c4.y, c4.z, c4.w});
   j["clip_planes"] = clips;
   j["background"] = to_json(scene.background());
+  if (!scene.meshes().empty()) j["meshes"] = json_reader::meshes_to_json(scene.meshes());
   shorten_floats(j);
   return j.dump(2);
 }

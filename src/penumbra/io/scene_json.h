@@ -26,6 +26,10 @@ struct SceneParseOptions {
       load_volume;
   // Whether `transfer_function.preset` may name a file.
   bool allow_preset_files = true;
+  // Turns a mesh file or a mesh's texture volume file, as written at `key`
+  // (for example "meshes[0].file"), into the path to read. Empty: relative to
+  // the scene's folder. A server passes its own to keep clients in its data folder.
+  std::function<std::filesystem::path(const std::string& file, const std::string& key)> resolve_file;
 };
 
 // Parses scene JSON text; `base_dir` resolves relative paths.

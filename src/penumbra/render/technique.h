@@ -43,6 +43,7 @@ struct TechniqueInfo {
   std::string summary;  // one line: what it computes and from which paper
   ParameterTable parameters;
   std::function<std::unique_ptr<Technique>()> create;
+  bool draws_meshes = false;  // whether it draws the scene's meshes (scene/mesh.h)
 };
 
 }  // namespace penumbra

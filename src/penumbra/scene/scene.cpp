@@ -49,7 +49,7 @@ std::uint64_t Scene::next_version() {
 
 Scene::Scene() {
   versions_ = SceneVersions{next_version(), next_version(), next_version(), next_version(),
-                            next_version(), next_version(), next_version()};
+                            next_version(), next_version(), next_version(), next_version()};
 }
 
 const Volume& Scene::volume() const {
@@ -146,6 +146,65 @@ void Scene::set_clip_planes(std::vector<vec4> clip_planes) {
   }
   clip_planes_ = std::move(clip_planes);
   versions_.geometry = next_version();
+}
+
+Box3 Scene::scene_box() const {
+  Box3 box = volume().world_box();
+  for (const MeshObject& m : meshes_) {
+    const Box3 b = m.world_bounds();
+    box.lower = glm::min(box.lower, b.lower);
+    box.upper = glm::max(box.upper, b.upper);
+  }
+  return box;
+}
+
+void Scene::set_meshes(std::vector<MeshObject> meshes) {
+  if (meshes.size() > std::size_t(kMaxMeshes)) {
+    throw InvalidScene("meshes", fmt::format("at most {} meshes, got {}", kMaxMeshes, meshes.size()));
+  }
+  for (std::size_t i = 0; i < meshes.size(); ++i) {
+    const MeshObject& m = meshes[i];
+    const std::string key = fmt::format("meshes[{}]", i);
+    if (!m.mesh) throw InvalidScene(key, "has no triangles loaded");
+    try {
+      m.mesh->validate(key);
+    } catch (const InvalidArgument& e) {
+      throw InvalidScene(e.name(), e.what());
+    }
+    if (!finite3(m.scale) || m.scale.x == 0.0f || m.scale.y == 0.0f || m.scale.z == 0.0f) {
+      throw InvalidScene(key + ".scale", "must be finite and non-zero");
+    }
+    if (!finite3(m.rotate_deg)) throw InvalidScene(key + ".rotate_deg", "must be finite");
+    if (!finite3(m.translate)) throw InvalidScene(key + ".translate", "must be finite");
+    const MeshMaterial& mat = m.material;
+    if (!(mat.specular >= 0.0f && mat.specular <= 1.0f)) {
+      throw InvalidScene(key + ".material.specular", "must be in [0, 1]");
+    }
+    if (!(mat.roughness > 0.0f && mat.roughness <= 1.0f)) {
+      throw InvalidScene(key + ".material.roughness", "must be in (0, 1]");
+    }
+    const DetailFunction& d = mat.detail;
+    if (!(d.frequency > 0.0f) || !is_finite(d.frequency)) {
+      throw InvalidScene(key + ".material.detail.frequency", "must be positive");
+    }
+    if (d.fractal.octaves < 1 || d.fractal.octaves > 16) {
+      throw InvalidScene(key + ".material.detail.octaves", "must be in [1, 16]");
+    }
+    if (!(d.fractal.lacunarity >= 1.0f && d.fractal.lacunarity <= 8.0f)) {
+      throw InvalidScene(key + ".material.detail.lacunarity", "must be in [1, 8]");
+    }
+    if (!(d.fractal.gain >= 0.0f && d.fractal.gain <= 1.0f)) {
+      throw InvalidScene(key + ".material.detail.gain", "must be in [0, 1]");
+    }
+    if (!is_finite(d.fractal.offset) || !is_finite(d.fractal.time) || !is_finite(d.value)) {
+      throw InvalidScene(key + ".material.detail", "offset, time and value must be finite");
+    }
+    if (d.type == DetailType::Texture && !d.texture) {
+      throw InvalidScene(key + ".material.detail.texture", "the texture volume is not loaded");
+    }
+  }
+  meshes_ = std::move(meshes);
+  versions_.meshes = next_version();
 }
 
 void Scene::set_render(RenderSettings render) {

@@ -8,6 +8,7 @@
 #include "penumbra/scene/camera.h"
 #include "penumbra/scene/light.h"
 #include "penumbra/scene/material.h"
+#include "penumbra/scene/mesh.h"
 #include "penumbra/scene/plane.h"
 #include "penumbra/scene/transfer_function.h"
 #include "penumbra/volume/volume.h"
@@ -57,6 +58,7 @@ struct SceneVersions {
   std::uint64_t material = 0;  // material and background
   std::uint64_t geometry = 0;  // planes and clip planes
   std::uint64_t render = 0;    // image size, step, technique, parameters
+  std::uint64_t meshes = 0;    // meshes, their placement and materials
 };
 
 class Scene {
@@ -100,6 +102,14 @@ class Scene {
   const std::vector<vec4>& clip_planes() const { return clip_planes_; }
   void set_clip_planes(std::vector<vec4> clip_planes);
 
+  // Closed triangle meshes with volumetric detail (mesh.h); only techniques
+  // whose TechniqueInfo says draws_meshes draw them.
+  const std::vector<MeshObject>& meshes() const { return meshes_; }
+  // Throws InvalidScene("meshes[i]...") for a mesh that is missing or invalid,
+  // or more than kMaxMeshes of them.
+  void set_meshes(std::vector<MeshObject> meshes);
+  static constexpr int kMaxMeshes = 32;
+
   const RenderSettings& render() const { return render_; }
   void set_render(RenderSettings render);
 
@@ -113,6 +123,7 @@ class Scene {
   vec2 shadow_tf_value_range() const;
   float shadow_unit_length() const;
   float step_world() const;      // render.step in world units
+  Box3 scene_box() const;        // the volume's box joined with the meshes' world bounds
 
  private:
   static std::uint64_t next_version();
@@ -128,6 +139,7 @@ class Scene {
   vec3 background_{0.0f};
   std::vector<Plane> planes_;
   std::vector<vec4> clip_planes_;
+  std::vector<MeshObject> meshes_;
   RenderSettings render_;
   SceneVersions versions_;
 };

@@ -27,6 +27,8 @@ float marschner_lobb(vec3 p, ivec3) {
 
 float slab(vec3, ivec3) { return 1.0f; }
 
+float empty(vec3, ivec3) { return 0.0f; }
+
 float edge(vec3 p, ivec3) { return (p.x < 0.0f && p.z >= 0.2f && p.z <= 0.4f) ? 1.0f : 0.0f; }
 
 float chirp(vec3 p, ivec3 size) {
@@ -56,6 +58,7 @@ struct Generator {
 constexpr Generator kGenerators[] = {
     {"spheres", spheres}, {"marschner-lobb", marschner_lobb}, {"slab", slab},
     {"edge", edge},       {"chirp", chirp},                   {"shell", shell},
+    {"empty", empty},
 };
 
 Field find_field(std::string_view name) {
@@ -77,6 +80,7 @@ const std::vector<ProceduralInfo>& procedural_volumes() {
       {"edge", "sharp half-plane occluder (x < 0, 0.2 <= z <= 0.4), for penumbra tests"},
       {"chirp", "layer at 0.2 <= z <= 0.4 whose value is a chirp along x, for shadow filter tests"},
       {"shell", "translucent shell (value 0.5) around an opaque core (value 1)"},
+      {"empty", "zero everywhere: the frame of a scene made only of meshes (its box places the camera)"},
   };
   return list;
 }

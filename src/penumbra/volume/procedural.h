@@ -19,6 +19,8 @@
 //                   rising linearly from 1 to n/8 cycles per box width.
 //   shell           translucent shell (v = 0.5 for r in [0.55, 0.85]) around an
 //                   opaque core (v = 1 for r < 0.35), centred.
+//   empty           v = 0: a scene made only of meshes still has a volume,
+//                   whose box and spacing set the camera and the TF unit length.
 #include "penumbra/base/math.h"
 #include "penumbra/volume/volume.h"
 
