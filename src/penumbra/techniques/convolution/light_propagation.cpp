@@ -6,10 +6,11 @@ namespace penumbra {
 
 void convolve_slab(const SlabFrame& frame, const SlabKernel& kernel, const vec3* previous, vec3* incoming,
                    float depth) {
+  const SlabMapping mapping = slab_mapping(frame, depth);
   parallel_for(0, frame.height, [&](std::int64_t first, std::int64_t last) {
     for (std::int64_t y = first; y < last; ++y) {
       for (int x = 0; x < frame.width; ++x) {
-        incoming[x + frame.width * int(y)] = convolve_texel(frame, kernel, previous, x, int(y), depth);
+        incoming[x + frame.width * int(y)] = convolve_texel_mapped(frame, mapping, kernel, previous, x, int(y));
       }
     }
   });

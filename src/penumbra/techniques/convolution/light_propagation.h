@@ -69,6 +69,45 @@ PENUMBRA_HD inline vec3 convolve_texel(const SlabFrame& f, const SlabKernel& k, 
   return sum;
 }
 
+// The same map from slab k's texels to slab k - 1's pixel coordinates in
+// closed form: the pinhole projection makes it affine. With s = z / (z - e)
+// (1 for an orthographic camera) and k = H / (2 h (z - e)) pixels per world
+// unit of lateral offset at depth z - e (H / (2 h) orthographic; h the
+// camera's half_height), a texel centre p and a tap offset o map to
+//   p' = c + s (p - c) + k (-o.x, o.y),   c = the image centre (W/2, H/2).
+struct SlabMapping {
+  vec2 center{0.0f};
+  float scale = 1.0f;
+  float pixels_per_unit = 1.0f;
+};
+
+PENUMBRA_HD inline SlabMapping slab_mapping(const SlabFrame& f, float depth) {
+  SlabMapping m;
+  m.center = vec2(0.5f * float(f.width), 0.5f * float(f.height));
+  const float source_depth = glm::max(depth - f.slab_distance, 1e-6f);
+  if (f.camera.orthographic) {
+    m.pixels_per_unit = float(f.height) / (2.0f * f.camera.half_height);
+  } else {
+    m.scale = depth / source_depth;
+    m.pixels_per_unit = float(f.height) / (2.0f * f.camera.half_height * source_depth);
+  }
+  return m;
+}
+
+// convolve_texel through the affine map (what convolve_slab runs).
+PENUMBRA_HD inline vec3 convolve_texel_mapped(const SlabFrame& f, const SlabMapping& m, const SlabKernel& k,
+                                              const vec3* previous, int x, int y) {
+  const vec2 p = m.center + m.scale * (vec2(float(x) + 0.5f, float(y) + 0.5f) - m.center);
+  const float phi = k.pixel_angle(x, y);
+  const float c = glm::cos(phi), s = glm::sin(phi);
+  vec3 sum(0.0f);
+  for (int j = 0; j < k.count; ++j) {
+    const vec2 o = k.offset(j, c, s);
+    sum += k.weights[j] * read_buffer(previous, f.width, f.height, p + m.pixels_per_unit * vec2(-o.x, o.y));
+  }
+  return sum;
+}
+
 // The whole buffer for the slab at `depth` (parallel over rows).
 void convolve_slab(const SlabFrame& frame, const SlabKernel& kernel, const vec3* previous, vec3* incoming,
                    float depth);

@@ -90,5 +90,40 @@ TEST(ConvolutionPropagation, PenumbraAtOptimalDistanceMatchesExactShadow) {
   }
 }
 
+// convolve_slab runs the closed-form affine map; it must read the same
+// places as the world-space definition (convolve_texel), for a perspective
+// camera (whose rays diverge: s != 1) and an orthographic one, with a tilted
+// light and random per-pixel kernel rotations.
+TEST(ConvolutionPropagation, AffineMapMatchesTheWorldSpaceDefinition) {
+  constexpr int kW = 40, kH = 30;
+  std::vector<vec3> previous(std::size_t(kW * kH));
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x)
+      previous[std::size_t(x + kW * y)] = vec3(std::sin(0.3f * float(x)) + 1.5f, std::cos(0.2f * float(y)) + 1.5f,
+                                               float((x * 7 + y * 3) % 5));
+  for (bool ortho : {false, true}) {
+    SlabFrame f;
+    f.camera = Camera{vec3(3.0f, -40.0f, 12.0f), vec3(0.0f), vec3(0.0f, 0.0f, 1.0f), 35.0f,
+                      ortho ? Projection::Orthographic : Projection::Perspective, 24.0f}
+                   .view();
+    f.width = kW;
+    f.height = kH;
+    f.slab_distance = 0.7f;
+    SlabKernelBuilder builder(SlabKernelType::Poisson, 8, vec2(0.2f, -0.1f), rotated_covariance(0.3f, 0.1f, 30.0f), 3);
+    const SlabKernel k = builder.for_slab(5);
+    const float depth = 35.0f;
+    const SlabMapping m = slab_mapping(f, depth);
+    float worst = 0.0f;
+    for (int y = 0; y < kH; ++y) {
+      for (int x = 0; x < kW; ++x) {
+        const vec3 a = convolve_texel(f, k, previous.data(), x, y, depth);
+        const vec3 b = convolve_texel_mapped(f, m, k, previous.data(), x, y);
+        worst = std::max(worst, glm::length(a - b));
+      }
+    }
+    EXPECT_LT(worst, 2e-4f) << (ortho ? "orthographic" : "perspective");
+  }
+}
+
 }  // namespace
 }  // namespace penumbra
