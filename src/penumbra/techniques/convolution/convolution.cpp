@@ -17,6 +17,7 @@ class Convolution final : public Technique {
     s.light.sigma_y2 = float(params.number("light_sigma_y2"));
     s.light.rotation_deg = float(params.number("light_rotation_deg"));
     s.seed = std::uint64_t(params.integer("seed"));
+    s.preintegrated = params.flag("preintegrated");
     renderer_.prepare(scene, s);
   }
 
@@ -49,8 +50,11 @@ TechniqueInfo convolution_info() {
           ParameterSpec::real("light_rotation_deg", 0.0, -180.0, 180.0,
                               "rotation alpha of the light's x axis from camera right (with light_sigma_x2 >= 0)"),
           ParameterSpec::integer("seed", 1, 0, 1 << 30, "seed of the random kernel rotations"),
+          ParameterSpec::flag("preintegrated", false,
+                              "preintegrated compositing of the volume between slabs (Engel et al. 2001)"),
       }},
-      [] { return std::make_unique<Convolution>(); }};
+      [] { return std::make_unique<Convolution>(); },
+      /*draws_meshes=*/true};
 }
 
 }  // namespace penumbra

@@ -20,13 +20,16 @@
 //                       the paper's (sigma_x^2, sigma_y^2, alpha) for every
 //                       light (sigma_x2 < 0: from the scene's lights)
 //   seed                for the random kernel rotations
+//   preintegrated       preintegrated compositing of the volume (Fig. 19)
 // Passes
-//   prepare: only the shared resources; slabs and buffers depend on the
-//            camera, so everything else is per frame (rebuilds() stays 0)
-//   render:  the slab loop of slab_renderer.h
-// Not yet: meshes (layered depth image, OBJ/PLY readers, per-material TFs,
-// the microfacet term at surface crossings; the detail functions exist in
-// procedural_detail.h), preintegrated compositing.
+//   prepare: the shared resources and the meshes in world space with their
+//            detail functions and material TFs (mesh_resources.h); slabs,
+//            buffers and the layered depth image depend on the camera, so
+//            they are per frame (rebuilds() stays 0)
+//   render:  the layered depth image of the meshes (layered_depth_image.h),
+//            then the slab loop of slab_renderer.h
+// Meshes: the scene's closed triangle meshes (scene/mesh.h) filled with
+// volumetric detail; this is the only technique that draws them.
 #include "penumbra/render/technique.h"
 
 namespace penumbra {

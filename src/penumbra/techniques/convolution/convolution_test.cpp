@@ -115,8 +115,8 @@ TEST(Convolution, ZeroVarianceMatchesShadowRays) {
   const Scene scene = edge_scene(96);
   const Image conv = render_with(scene, "convolution", {{"kernel", std::string("ellipse")}});
   const Image rays = render_with(scene, "shadow-rays");
-  write_png("/tmp/conv_edge_zero_var.png", conv);
-  write_png("/tmp/conv_edge_shadow_rays.png", rays);
+  testing::save_test_image(conv, "conv_edge_zero_var.png");
+  testing::save_test_image(rays, "conv_edge_shadow_rays.png");
   const std::vector<float> a = floor_profile(conv), b = floor_profile(rays);
   const float lit = b.back();
   const float edge_conv = rising_crossing(a, 0.5f * lit), edge_rays = rising_crossing(b, 0.5f * lit);
@@ -142,7 +142,7 @@ TEST(Convolution, HalfShadowStaysAsThePenumbraWidens) {
                                   {"light_sigma_y2", s2},
                                   {"kernel", std::string("gaussian")},
                                   {"kernel_samples", 7.0}});
-    write_png(i == 0 ? "/tmp/conv_edge_var_low.png" : "/tmp/conv_edge_var_high.png", im);
+    testing::save_test_image(im, i == 0 ? "conv_edge_var_low.png" : "conv_edge_var_high.png");
     const std::vector<float> row = floor_profile(im);
     const float lit = row.back();
     half[i] = rising_crossing(row, 0.5f * lit);
@@ -200,6 +200,31 @@ TEST(Convolution, SoftShadowsApproachPathtraceOnPlateOverPlane) {
   std::printf("plate over plane: mean dE convolution %.2f, shadow-rays %.2f\n", conv, rays);
   EXPECT_LT(conv, 1.8);
   EXPECT_LT(conv, rays);
+}
+
+// Fig. 19: with few slabs, a thin TF feature (an iso-shell of the spheres)
+// falls between the samples and the image breaks up; preintegrated
+// compositing integrates the TF between consecutive samples and stays close
+// to the many-slab image. Observed at 40^2, e = 3 voxels: RMSE to e = 0.25
+// of about 0.03 preintegrated against 0.09 without (printed below).
+TEST(Convolution, PreintegrationKeepsThinFeaturesWithFewSlabs) {
+  Scene scene = testing::lit_spheres(40);
+  TransferFunction tf({{0.0f, vec3(1.0f, 0.7f, 0.4f), 0.0f},
+                       {0.47f, vec3(1.0f, 0.7f, 0.4f), 0.0f},
+                       {0.5f, vec3(1.0f, 0.7f, 0.4f), 0.9f},
+                       {0.53f, vec3(1.0f, 0.7f, 0.4f), 0.0f},
+                       {1.0f, vec3(1.0f, 0.7f, 0.4f), 0.0f}});
+  tf.set_range(vec2(0.0f, 1.0f));
+  scene.set_transfer_function(tf);
+  const Image reference = render_with(scene, "convolution", {{"slab_distance", 0.25}});
+  const Image plain = render_with(scene, "convolution", {{"slab_distance", 3.0}});
+  const Image pre = render_with(scene, "convolution", {{"slab_distance", 3.0}, {"preintegrated", true}});
+  testing::save_test_image(reference, "conv_preint_reference.png");
+  testing::save_test_image(plain, "conv_preint_off.png");
+  testing::save_test_image(pre, "conv_preint_on.png");
+  const double e_plain = rmse(plain, reference), e_pre = rmse(pre, reference);
+  std::printf("few slabs: rmse %.4f plain, %.4f preintegrated\n", e_plain, e_pre);
+  EXPECT_LT(e_pre, 0.6 * e_plain);
 }
 
 }  // namespace

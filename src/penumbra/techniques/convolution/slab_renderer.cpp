@@ -4,16 +4,20 @@
 #include "penumbra/base/memory_budget.h"
 #include "penumbra/base/parallel.h"
 #include "penumbra/render/lighting.h"
+#include "penumbra/render/microfacet.h"
 #include "penumbra/techniques/convolution/light_propagation.h"
+#include "penumbra/techniques/convolution/mesh_layers.h"
 
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <limits>
 
 namespace penumbra {
 namespace {
 
-constexpr int kMaxLights = 16;
+constexpr int kMaxLights = 16;        // light buffers (environment lights have none)
+constexpr int kMaxSceneLights = 64;   // per-pixel arrays are indexed by scene light
 constexpr int kMaxSlabs = 16384;
 
 struct PixelState {
@@ -25,6 +29,8 @@ struct PixelState {
   float z_plane = kInfinity;
   int plane = -1;
   bool done = false;  // reached an opaque plane
+  float previous_value = std::numeric_limits<float>::quiet_NaN();  // preintegration: the last volume sample
+  PixelLayers layers;
 };
 
 // Visibility from the light buffers at the current pixel (indexed by scene light).
@@ -44,10 +50,27 @@ float box_depth(const Box3& box, const CameraView& c, bool far_side) {
   return z;
 }
 
+// The mesh medium at a world point: the sum over the meshes the point may be
+// in (extinction-weighted colour, summed extinction).
+PENUMBRA_HD inline vec4 mesh_medium(const MeshesView& meshes, std::uint32_t objects, vec3 world) {
+  vec3 weighted(0.0f);
+  float sigma = 0.0f;
+  for (int m = 0; m < meshes.count; ++m) {
+    if (!(objects & (1u << m))) continue;
+    const MeshMaterialView& mat = meshes.objects[m];
+    const vec3 object(mat.world_to_object * vec4(world, 1.0f));
+    const vec4 c = mat.tf.lookup(mat.detail(object));
+    weighted += c.a * vec3(c);
+    sigma += c.a;
+  }
+  return sigma > 0.0f ? vec4(weighted / sigma, sigma) : vec4(0.0f);
+}
+
 }  // namespace
 
 void SlabRenderer::prepare(const Scene& scene, const SlabSettings& settings) {
   resources_.update(scene, scene.material().shading == Shading::Phong);
+  meshes_.update(scene);
   settings_ = settings;
 }
 
@@ -57,7 +80,12 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
   const int width = view.width, height = view.height;
   if (image.width() != width || image.height() != height) image = Image(width, height);
   const CameraView& cam = view.camera;
-  const vec3 center = view.box.center();
+  Box3 box = view.box;
+  if (!meshes_.empty()) {
+    box.lower = glm::min(box.lower, meshes_.world_bounds().lower);
+    box.upper = glm::max(box.upper, meshes_.world_bounds().upper);
+  }
+  const vec3 center = box.center();
 
   // One Gaussian light and kernel per non-environment light.
   std::vector<int> slot_of(scene.lights().size(), -1);
@@ -68,15 +96,15 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
     slot_of[i] = int(lights.size());
     lights.push_back(gaussian_light(l, cam, center, settings_.light));
   }
-  if (scene.lights().size() > std::size_t(kMaxLights)) {
-    throw InvalidScene("lights", "convolution supports at most 16 lights");
+  if (lights.size() > std::size_t(kMaxLights) || scene.lights().size() > std::size_t(kMaxSceneLights)) {
+    throw InvalidScene("lights", "convolution supports at most 16 lights besides environment lights (64 in all)");
   }
   const int light_count = int(lights.size());
 
   const float voxel = view.volume.min_spacing();
   const float e = settings_.slab_distance_voxels > 0.0f ? settings_.slab_distance_voxels * voxel : view.step;
-  float z_front = box_depth(view.box, cam, false);
-  float z_back = box_depth(view.box, cam, true);
+  float z_front = box_depth(box, cam, false);
+  float z_back = box_depth(box, cam, true);
   if (!cam.orthographic) z_front = glm::max(z_front, 1e-4f);
   const float box_extent = glm::max(z_back - z_front, 0.0f);
   const float d1 = settings_.optimal_distance_voxels > 0.0f ? settings_.optimal_distance_voxels * voxel
@@ -85,29 +113,40 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
   const std::size_t pixels = std::size_t(width) * std::size_t(height);
   check_memory_budget("convolution buffers",
                       checked_product({pixels, 2 * std::uint64_t(light_count) * sizeof(vec3) + sizeof(PixelState)}));
+  if (!meshes_.empty()) meshes_.build_ldi(cam, width, height);
+  const MeshesView meshes = meshes_.view();
+  const bool has_meshes = meshes.count > 0;
+  if (settings_.preintegrated) preintegration_.update(view.tf, e);
+  const PreintegrationView preintegrated = preintegration_.view();
+  const bool use_preintegration = settings_.preintegrated;
+
+  // Per pixel: its ray, the volume's depth interval, the nearest plane and the
+  // meshes' starting parity.
   std::vector<PixelState> px(pixels);
-  const float diagonal = glm::length(view.box.upper - view.box.lower);
-  float plane_back = z_back;
-  for (int y = 0; y < height; ++y) {
-    for (int x = 0; x < width; ++x) {
-      PixelState& p = px[std::size_t(x) + std::size_t(width) * std::size_t(y)];
-      const Ray ray = cam.pixel_ray(float(x) + 0.5f, float(y) + 0.5f, width, height);
-      p.ray_dir = ray.direction;
-      p.ray_cos = glm::dot(ray.direction, cam.forward);
-      float t_plane = kInfinity;
-      p.plane = nearest_plane(view, ray, kInfinity, t_plane);
-      if (p.plane >= 0) {
-        p.z_plane = t_plane * p.ray_cos;
-        plane_back = glm::max(plane_back, glm::min(p.z_plane, z_back + diagonal));
-      }
-      const Interval in = volume_interval(view, ray, 0.0f, t_plane);
-      if (!in.empty()) {
-        p.z_in = in.t0 * p.ray_cos;
-        p.z_out = in.t1 * p.ray_cos;
+  const float diagonal = glm::length(box.upper - box.lower);
+  parallel_for(0, height, [&](std::int64_t first, std::int64_t last) {
+    for (std::int64_t y = first; y < last; ++y) {
+      for (int x = 0; x < width; ++x) {
+        PixelState& p = px[std::size_t(x) + std::size_t(width) * std::size_t(y)];
+        const Ray ray = cam.pixel_ray(float(x) + 0.5f, float(y) + 0.5f, width, height);
+        p.ray_dir = ray.direction;
+        p.ray_cos = glm::dot(ray.direction, cam.forward);
+        float t_plane = kInfinity;
+        p.plane = nearest_plane(view, ray, kInfinity, t_plane);
+        if (p.plane >= 0) p.z_plane = t_plane * p.ray_cos;
+        const Interval in = volume_interval(view, ray, 0.0f, t_plane);
+        if (!in.empty()) {
+          p.z_in = in.t0 * p.ray_cos;
+          p.z_out = in.t1 * p.ray_cos;
+        }
+        if (has_meshes) p.layers = start_layers(meshes.ldi, x, int(y));
       }
     }
+  });
+  // Slabs continue to the farthest plane hit, at most one box diagonal beyond the box.
+  for (const PixelState& p : px) {
+    if (p.plane >= 0) z_back = glm::max(z_back, glm::min(p.z_plane, box_depth(box, cam, true) + diagonal));
   }
-  z_back = plane_back;
   const int slabs = int(std::ceil(glm::max(z_back - z_front, 0.0f) / e));
   if (slabs > kMaxSlabs) {
     throw InvalidArgument("slab_distance", "gives more than 16384 slabs through the scene; use a larger distance");
@@ -129,20 +168,27 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
   std::atomic<std::uint64_t> samples{0};
   int current = 0;  // which half of each light's pair holds the previous slab's light
   auto buffer = [&](int l, int half) { return buffers_.data() + (std::size_t(2 * l + half)) * pixels; };
+  const ScatteringLighting<BufferVisibility> volume_light{&view, {nullptr}, view.material.shading};
+  const ScatteringLighting<BufferVisibility> mesh_light{&view, {nullptr}, Shading::Phase};
 
   auto shade_plane = [&](PixelState& p, int x, int y, const vec3* vis) {
     const Ray ray = cam.pixel_ray(float(x) + 0.5f, float(y) + 0.5f, width, height);
     const PlaneHit hit{ray.at(p.z_plane / p.ray_cos), p.plane, ray.direction};
-    const vec3 c = ScatteringLighting<BufferVisibility>{&view, {vis}, view.material.shading}.plane(hit);
-    p.color += p.transmittance * c;
+    ScatteringLighting<BufferVisibility> lighting = volume_light;
+    lighting.visibility.values = vis;
+    p.color += p.transmittance * lighting.plane(hit);
     p.transmittance = 0.0f;
     p.done = true;
   };
 
   with_sampler(view.volume, [&](const auto& sampler) {
     using Sampler = std::decay_t<decltype(sampler)>;
+    auto tf_lookup = [&](const TransferFunctionView& tf, float value) {
+      return Sampler::kAlwaysFinite ? tf.lookup_finite(value) : tf.lookup(value);
+    };
     for (int k = 0; k < slabs; ++k) {
       const float z = z_front + (float(k) + 0.5f) * e;
+      const float z0 = z - 0.5f * e, z1 = z + 0.5f * e;
       const int next = 1 - current;
       for (int l = 0; l < light_count; ++l) {
         if (k == 0) continue;  // buffers start unoccluded
@@ -151,58 +197,117 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
       if (k > 0) current = next;
       parallel_for(0, height, [&](std::int64_t first, std::int64_t last) {
         std::uint64_t count = 0;
-        vec3 vis[kMaxLights];
-        for (int i = 0; i < kMaxLights; ++i) vis[i] = vec3(1.0f);
+        vec3 incoming[kMaxSceneLights], vis[kMaxSceneLights];
+        for (int i = 0; i < kMaxSceneLights; ++i) incoming[i] = vis[i] = vec3(1.0f);
         for (std::int64_t y = first; y < last; ++y) {
           for (int x = 0; x < width; ++x) {
             const std::size_t i = std::size_t(x) + std::size_t(width) * std::size_t(y);
             PixelState& p = px[i];
-            const bool plane_here = p.plane >= 0 && p.z_plane < z + 0.5f * e;
-            // The part of the slab inside the box and clip planes, sampled at
-            // its middle (DESIGN-NOTES "Sampling": segments sum to the chord,
-            // so a homogeneous medium integrates exactly).
-            const float s0 = glm::max(z - 0.5f * e, p.z_in), s1 = glm::min(z + 0.5f * e, p.z_out);
+            const bool plane_here = p.plane >= 0 && p.z_plane < z1;
+            for (std::size_t s = 0; s < slot_of.size(); ++s) {
+              if (slot_of[s] >= 0) incoming[s] = buffer(slot_of[s], current)[i];
+            }
+            const bool shading = !p.done && p.transmittance > min_transmittance;
+
+            // The volume: the part of the slab inside the box and clip planes,
+            // sampled at its middle (DESIGN-NOTES "Sampling": segments sum to
+            // the chord, so a homogeneous medium integrates exactly).
+            const float s0 = glm::max(z0, p.z_in), s1 = glm::min(z1, p.z_out);
             const float zs = 0.5f * (s0 + s1);
-            const bool sample_here = s1 > s0 && !(p.plane >= 0 && p.z_plane <= zs);
-            if (sample_here) {
-              const float fraction = (s1 - s0) / e;
-              const vec3 pos = slab_point(frame, x, int(y), zs);
-              const vec3 index = view.volume.index_from_world(pos);
-              const float value = sampler(index);
-              const vec4 c = Sampler::kAlwaysFinite ? view.tf.lookup_finite(value) : view.tf.lookup(value);
-              const float sigma_shadow =
-                  separate_shadow_tf ? (Sampler::kAlwaysFinite ? shadow.tf.lookup_finite(value) : shadow.tf.lookup(value)).a
-                                     : c.a;
+            const bool volume_here = s1 > s0 && !(p.plane >= 0 && p.z_plane <= zs);
+            vec4 volume_sample(0.0f);  // (rgb, alpha) along the viewing ray
+            float volume_shadow = 0.0f;  // optical depth toward the lights per unit light path
+            float value = 0.0f;
+            vec3 volume_pos(0.0f), volume_index(0.0f);
+            if (volume_here) {
+              volume_pos = slab_point(frame, x, int(y), zs);
+              volume_index = view.volume.index_from_world(volume_pos);
+              value = sampler(volume_index);
               ++count;
-              if (c.a > 0.0f && !p.done && p.transmittance > min_transmittance) {
-                // Lit at the segment's middle: attenuated by the half of the
-                // segment in front of it (the midpoint rule of the ray caster;
-                // without it a slab thicker than the mean free path is lit as
-                // if its front were its middle, too bright).
-                for (std::size_t s = 0; s < slot_of.size(); ++s) {
-                  if (slot_of[s] < 0) continue;
-                  const float half_path = 0.5f * fraction * light_path[std::size_t(slot_of[s])];
-                  vis[s] = buffer(slot_of[s], current)[i] * exp_nonpositive(-sigma_shadow * half_path);
-                }
-                const float alpha = 1.0f - exp_nonpositive(-c.a * (s1 - s0) / p.ray_cos);
-                const SamplePoint sp{pos, index, value, vec3(c), c.a, p.ray_dir};
-                const vec3 lit = ScatteringLighting<BufferVisibility>{&view, {vis}, view.material.shading}.sample(sp);
-                p.color += (p.transmittance * alpha) * lit;
-                p.transmittance *= 1.0f - alpha;
+              const float fraction = (s1 - s0) / e;
+              if (use_preintegration) {
+                const float front = std::isnan(p.previous_value) ? value : p.previous_value;
+                const vec4 seg = preintegrated.lookup(front, value);
+                const float depth_exponent = fraction / p.ray_cos;  // the segment's length in units of e
+                const float keep = glm::max(1.0f - seg.a, 1e-30f);
+                volume_sample = vec4(vec3(seg), 1.0f - std::pow(keep, depth_exponent));
+                volume_shadow = separate_shadow_tf ? tf_lookup(shadow.tf, value).a * fraction
+                                                   : -std::log(keep) / e * fraction;
+              } else {
+                const vec4 c = tf_lookup(view.tf, value);
+                volume_sample = vec4(vec3(c), 1.0f - exp_nonpositive(-c.a * (s1 - s0) / p.ray_cos));
+                volume_shadow = (separate_shadow_tf ? tf_lookup(shadow.tf, value).a : c.a) * fraction;
               }
-              if (sigma_shadow > 0.0f) {
-                for (int l = 0; l < light_count; ++l) {
-                  buffer(l, current)[i] *= exp_nonpositive(-sigma_shadow * fraction * light_path[std::size_t(l)]);
-                }
+              p.previous_value = value;
+            } else {
+              p.previous_value = std::numeric_limits<float>::quiet_NaN();
+            }
+
+            // The meshes: the part of the slab inside them (up to a plane).
+            SlabCoverage cover;
+            vec4 mesh_sample(0.0f);
+            float mesh_shadow = 0.0f;
+            vec3 mesh_pos(0.0f);
+            if (has_meshes) {
+              cover = cross_slab(meshes.ldi, p.layers, z0, glm::min(z1, p.z_plane));
+              if (cover.length > 0.0f) {
+                mesh_pos = slab_point(frame, x, int(y), cover.middle);
+                const vec4 m = mesh_medium(meshes, cover.objects, mesh_pos);
+                mesh_sample = vec4(vec3(m), 1.0f - exp_nonpositive(-m.a * cover.length / p.ray_cos));
+                mesh_shadow = m.a * cover.length / e;
               }
             }
-            if (plane_here) {
-              if (!p.done) {
-                for (std::size_t s = 0; s < slot_of.size(); ++s) {
-                  if (slot_of[s] >= 0) vis[s] = buffer(slot_of[s], current)[i];
+
+            if (shading) {
+              // The highlight of the first surface entered in this slab.
+              if (cover.entry >= 0) {
+                const LdiFragment& f = meshes.ldi.fragments[cover.entry];
+                const MeshMaterialView& mat = meshes.objects[f.object];
+                const vec3 at = slab_point(frame, x, int(y), f.depth);
+                vec3 highlight(0.0f);
+                for (int l = 0; l < view.light_count; ++l) {
+                  const LightSample ls = sample_light(view.lights[l], at);
+                  const float spec = microfacet_specular(f.normal, -p.ray_dir, ls.to_light, mat.specular, mat.roughness);
+                  if (spec > 0.0f && !blocked_by_planes(view, at, ls)) highlight += spec * incoming[l] * ls.radiance;
                 }
-                shade_plane(p, x, int(y), vis);
+                p.color += p.transmittance * highlight;
               }
+              // Each part lit at its middle (attenuated by its own half in
+              // front, the ray caster's midpoint rule) and composited nearest first.
+              auto composite = [&](vec4 sample, float optical_depth, vec3 pos, vec3 index, float v,
+                                   const ScatteringLighting<BufferVisibility>& lighting) {
+                if (!(sample.a > 0.0f)) return;
+                for (std::size_t s = 0; s < slot_of.size(); ++s) {
+                  if (slot_of[s] < 0) continue;
+                  vis[s] = incoming[s] * exp_nonpositive(-0.5f * optical_depth * light_path[std::size_t(slot_of[s])]);
+                }
+                ScatteringLighting<BufferVisibility> lit = lighting;
+                lit.visibility.values = vis;
+                const SamplePoint sp{pos, index, v, vec3(sample), 0.0f, p.ray_dir};
+                p.color += (p.transmittance * sample.a) * lit.sample(sp);
+                p.transmittance *= 1.0f - sample.a;
+              };
+              if (cover.middle < zs) {
+                composite(mesh_sample, mesh_shadow, mesh_pos, vec3(0.0f), 0.0f, mesh_light);
+                composite(volume_sample, volume_shadow, volume_pos, volume_index, value, volume_light);
+              } else {
+                composite(volume_sample, volume_shadow, volume_pos, volume_index, value, volume_light);
+                composite(mesh_sample, mesh_shadow, mesh_pos, vec3(0.0f), 0.0f, mesh_light);
+              }
+            }
+            // (4) the light leaving this slab toward the next.
+            const float optical_depth = volume_shadow + mesh_shadow;
+            if (optical_depth > 0.0f) {
+              for (int l = 0; l < light_count; ++l) {
+                buffer(l, current)[i] *= exp_nonpositive(-optical_depth * light_path[std::size_t(l)]);
+              }
+            }
+            if (plane_here && !p.done) {
+              // Lit by the light that crossed this slab's medium in front of it.
+              for (std::size_t s = 0; s < slot_of.size(); ++s) {
+                if (slot_of[s] >= 0) vis[s] = buffer(slot_of[s], current)[i];
+              }
+              shade_plane(p, x, int(y), vis);
             }
           }
         }
@@ -214,8 +319,8 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
 
   // Planes beyond the last slab (capped) and the background.
   parallel_for(0, height, [&](std::int64_t first, std::int64_t last) {
-    vec3 vis[kMaxLights];
-    for (int i = 0; i < kMaxLights; ++i) vis[i] = vec3(1.0f);
+    vec3 vis[kMaxSceneLights];
+    for (int i = 0; i < kMaxSceneLights; ++i) vis[i] = vec3(1.0f);
     for (std::int64_t y = first; y < last; ++y) {
       for (int x = 0; x < width; ++x) {
         const std::size_t i = std::size_t(x) + std::size_t(width) * std::size_t(y);
@@ -238,6 +343,8 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
   }
 }
 
-std::uint64_t SlabRenderer::aux_bytes() const { return buffers_.size() * sizeof(vec3); }
+std::uint64_t SlabRenderer::aux_bytes() const {
+  return buffers_.size() * sizeof(vec3) + meshes_.bytes() + (settings_.preintegrated ? preintegration_.bytes() : 0);
+}
 
 }  // namespace penumbra

@@ -19,12 +19,23 @@
 // last slab's light.
 // Early ray termination stops the shading of a pixel, never its light
 // update (neighbours read it through the kernel).
-// Step (2) (the layered depth image of meshes) is not implemented yet.
+// Meshes (step 2): each pixel walks its layered depth image fragments slab by
+// slab (mesh_layers.h); the part of the slab inside a mesh is one more
+// sample, of the mesh's detail function through its material TF, lit with
+// the phase function like the volume (the paper's "purely diffuse"
+// illumination) and composited with the volume's sample in depth order; the
+// first surface a ray enters in a slab adds the microfacet highlight
+// (render/microfacet.h). Both media attenuate the light buffers.
+// Preintegrated compositing (optional): the volume segment between the
+// previous slab's sample and this one takes its opacity and colour from the
+// preintegration table of the TF (preintegration.h) instead of one point.
 #include "penumbra/render/image.h"
 #include "penumbra/render/render_loop.h"
 #include "penumbra/render/scene_resources.h"
 #include "penumbra/scene/scene.h"
 #include "penumbra/techniques/convolution/gaussian_light.h"
+#include "penumbra/techniques/convolution/mesh_resources.h"
+#include "penumbra/techniques/convolution/preintegration.h"
 #include "penumbra/techniques/convolution/slab_kernel.h"
 
 #include <cstdint>
@@ -39,6 +50,7 @@ struct SlabSettings {
   int kernel_samples = 0;  // 0: the kernel's default
   LightOverride light;
   std::uint64_t seed = 1;
+  bool preintegrated = false;
 };
 
 class SlabRenderer {
@@ -50,6 +62,8 @@ class SlabRenderer {
 
  private:
   SceneResources resources_;
+  MeshResources meshes_;
+  PreintegrationCache preintegration_;
   SlabSettings settings_;
   std::vector<vec3> buffers_;  // 2 per light, ping-pong
   int last_slabs_ = 0;

@@ -1,0 +1,79 @@
+#include "penumbra/techniques/convolution/mesh_resources.h"
+
+namespace penumbra {
+namespace {
+
+// The values a detail function takes, for a TF range of "data".
+vec2 natural_range(const DetailFunction& d) {
+  switch (d.type) {
+    case DetailType::Constant: return vec2(0.0f, 1.0f);
+    case DetailType::Noise:
+    case DetailType::Fbm: return vec2(-1.0f, 1.0f);
+    case DetailType::Ridged: return vec2(0.0f, 2.0f);
+    case DetailType::Texture:
+      if (d.texture) return vec2(d.texture->value_range().min, d.texture->value_range().max);
+      return vec2(0.0f, 1.0f);
+  }
+  return vec2(0.0f, 1.0f);
+}
+
+}  // namespace
+
+void MeshResources::update(const Scene& scene) {
+  const float unit = scene.unit_length();
+  if (scene.versions().meshes == version_ && unit == unit_length_) return;
+  version_ = scene.versions().meshes;
+  unit_length_ = unit;
+  const std::vector<MeshObject>& meshes = scene.meshes();
+  world_.assign(meshes.size(), TriangleMesh{});
+  details_.clear();
+  tfs_.clear();
+  objects_.clear();
+  bounds_ = Box3{vec3(kInfinity), vec3(-kInfinity)};
+  for (std::size_t i = 0; i < meshes.size(); ++i) {
+    const MeshObject& m = meshes[i];
+    const mat4 to_world = m.object_to_world();
+    TriangleMesh& w = world_[i];
+    w.triangles = m.mesh->triangles;
+    // A mirroring scale turns the winding inside out; swap two corners so
+    // normals still point outward.
+    if (glm::determinant(mat3(to_world)) < 0.0f) {
+      for (glm::uvec3& t : w.triangles) std::swap(t.y, t.z);
+    }
+    w.positions.reserve(m.mesh->positions.size());
+    for (const vec3& p : m.mesh->positions) w.positions.emplace_back(to_world * vec4(p, 1.0f));
+    const Box3 b = w.bounds();
+    bounds_.lower = glm::min(bounds_.lower, b.lower);
+    bounds_.upper = glm::max(bounds_.upper, b.upper);
+
+    const MeshMaterial& mat = m.material;
+    details_.push_back(std::make_unique<DetailResources>(mat.detail, m.mesh->bounds()));
+    const float tf_unit = mat.tf.unit_length().value_or(unit);
+    tfs_.emplace_back(mat.tf, mat.tf.resolve_range(natural_range(mat.detail)), tf_unit);
+  }
+  for (std::size_t i = 0; i < meshes.size(); ++i) {
+    MeshMaterialView v;
+    v.detail = details_[i]->view();
+    v.tf = tfs_[i].view();
+    v.world_to_object = glm::inverse(meshes[i].object_to_world());
+    v.specular = meshes[i].material.specular;
+    v.roughness = meshes[i].material.roughness;
+    objects_.push_back(v);
+  }
+}
+
+void MeshResources::build_ldi(const CameraView& camera, int width, int height) {
+  std::vector<const TriangleMesh*> meshes;
+  for (const TriangleMesh& m : world_) meshes.push_back(&m);
+  ldi_.build(meshes, camera, width, height);
+}
+
+MeshesView MeshResources::view() const { return MeshesView{objects_.data(), int(objects_.size()), ldi_.view()}; }
+
+std::uint64_t MeshResources::bytes() const {
+  std::uint64_t n = ldi_.bytes();
+  for (const TriangleMesh& m : world_) n += m.positions.size() * sizeof(vec3) + m.triangles.size() * sizeof(glm::uvec3);
+  return n;
+}
+
+}  // namespace penumbra

@@ -1,0 +1,53 @@
+#pragma once
+// What the slab renderer needs of the scene's meshes: the meshes moved to
+// world space, each mesh's detail function and material TF as plain views
+// (rebuilt when the meshes change), and the layered depth image (rebuilt per
+// frame: it depends on the camera).
+#include "penumbra/scene/detail_view.h"
+#include "penumbra/scene/scene.h"
+#include "penumbra/techniques/convolution/layered_depth_image.h"
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace penumbra {
+
+struct MeshMaterialView {
+  DetailView detail;         // of object-space positions
+  TransferFunctionView tf;   // detail value -> (rgb, sigma_t per world unit)
+  mat4 world_to_object{1.0f};
+  float specular = 0.0f;     // F0
+  float roughness = 0.3f;    // GGX alpha
+};
+
+struct MeshesView {
+  const MeshMaterialView* objects = nullptr;
+  int count = 0;
+  LdiView ldi{};
+};
+
+class MeshResources {
+ public:
+  // Rebuilds everything but the LDI when the scene's meshes (or the TF unit
+  // length they default to) changed.
+  void update(const Scene& scene);
+  void build_ldi(const CameraView& camera, int width, int height);
+
+  bool empty() const { return objects_.empty(); }
+  MeshesView view() const;
+  Box3 world_bounds() const { return bounds_; }
+  std::uint64_t bytes() const;
+
+ private:
+  std::uint64_t version_ = 0;
+  float unit_length_ = 0.0f;
+  std::vector<TriangleMesh> world_;
+  std::vector<std::unique_ptr<DetailResources>> details_;
+  std::vector<TransferFunctionTable> tfs_;
+  std::vector<MeshMaterialView> objects_;
+  Box3 bounds_{vec3(kInfinity), vec3(-kInfinity)};
+  LayeredDepthImage ldi_;
+};
+
+}  // namespace penumbra
