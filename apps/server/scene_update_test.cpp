@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
+
 namespace penumbra::server {
 namespace {
 
@@ -24,6 +26,30 @@ json file_scene(const std::string& file) {
   json j = small_scene();
   j["volume"] = {{"file", file}};
   return j;
+}
+
+// A closed tetrahedron, wound counter-clockwise seen from outside, as data/tet.obj.
+void make_tet_obj() {
+  std::ofstream(test_data_dir() / "tet.obj")
+      << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+}
+
+json mesh_scene(const json& meshes) {
+  json j = small_scene("convolution");
+  j["meshes"] = meshes;
+  return j;
+}
+
+// The error parsing `scene` raises: "status key" ("400 meshes[0].file"), or "ok".
+std::string error_of(Fixture& f, const json& scene) {
+  try {
+    f.parse(scene);
+  } catch (const HttpError& e) {
+    return std::to_string(e.status()) + " " + e.key();
+  } catch (const InvalidScene& e) {
+    return "InvalidScene " + e.key();
+  }
+  return "ok";
 }
 
 TEST(SceneUpdate, ReadsAVolumeFromTheDataFolderOnce) {
@@ -134,6 +160,102 @@ TEST(SceneUpdate, ApplyingChangesOnlyTheVersionsOfChangedParts) {
   EXPECT_TRUE(state.apply(f.parse(file_scene("tiny.nrrd"))));
   EXPECT_NE(state.scene().versions().data, settled.data);
   EXPECT_EQ(state.scene().volume().dims(), ivec3(8, 6, 4));
+}
+
+TEST(SceneUpdate, MeshFilesAndTexturesComeFromTheDataFolder) {
+  make_tet_obj();
+  Fixture f;
+  const ClientScene s = f.parse(mesh_scene({{{"file", "tet.obj"}}}));
+  ASSERT_EQ(s.scene.meshes().size(), 1u);
+  EXPECT_EQ(s.scene.meshes()[0].mesh->triangles.size(), 4u);
+  EXPECT_EQ(s.scene.meshes()[0].source.file, "tet.obj");  // as the client named it
+
+  json textured = mesh_scene({{{"builtin", "sphere"},
+                               {"material", {{"detail", {{"type", "texture"}, {"texture", "tiny.nrrd"}}}}}}});
+  const ClientScene t = f.parse(textured);
+  ASSERT_EQ(t.scene.meshes().size(), 1u);
+  const DetailFunction& detail = t.scene.meshes()[0].material.detail;
+  EXPECT_EQ(detail.texture_file, "tiny.nrrd");
+  ASSERT_TRUE(detail.texture);
+  EXPECT_EQ(detail.texture->dims(), ivec3(8, 6, 4));
+}
+
+TEST(SceneUpdate, MeshFilesOutsideTheDataFolderAreRefusedByKey) {
+  make_tet_obj();
+  Fixture f;
+  EXPECT_EQ(error_of(f, mesh_scene({{{"file", "../x.obj"}}})), "400 meshes[0].file");
+  EXPECT_EQ(error_of(f, mesh_scene({{{"file", "../outside/secret.nrrd"}}})), "400 meshes[0].file");
+  EXPECT_EQ(error_of(f, mesh_scene({{{"file", (test_data_dir() / "tet.obj").string()}}})), "400 meshes[0].file");
+  EXPECT_EQ(error_of(f, mesh_scene({{{"file", "/etc/passwd"}}})), "400 meshes[0].file");
+  EXPECT_EQ(error_of(f, mesh_scene({{{"file", "linkdir/secret.obj"}}})), "403 meshes[0].file");
+  EXPECT_EQ(error_of(f, mesh_scene({{{"file", "missing.obj"}}})), "404 meshes[0].file");
+  EXPECT_EQ(error_of(f, mesh_scene({{{"file", "tiny.nrrd"}}})), "415 meshes[0].file");
+  // The key names the mesh at fault.
+  EXPECT_EQ(error_of(f, mesh_scene({{{"file", "tet.obj"}}, {{"file", "../tet.obj"}}})), "400 meshes[1].file");
+
+  auto texture = [](const std::string& file) {
+    return mesh_scene({{{"builtin", "sphere"}, {"material", {{"detail", {{"type", "texture"}, {"texture", file}}}}}}});
+  };
+  const std::string key = "meshes[0].material.detail.texture";
+  EXPECT_EQ(error_of(f, texture("../outside/secret.nrrd")), "400 " + key);
+  EXPECT_EQ(error_of(f, texture((test_data_dir().parent_path() / "outside" / "secret.nrrd").string())), "400 " + key);
+  EXPECT_EQ(error_of(f, texture("escape.nrrd")), "403 " + key);
+  EXPECT_EQ(error_of(f, texture("missing.nrrd")), "404 " + key);
+  EXPECT_EQ(error_of(f, texture("tet.obj")), "415 " + key);  // a texture is a volume, not a mesh
+  EXPECT_EQ(error_of(f, texture("tiny.nrrd")), "ok");
+  // Builtin meshes need no data folder; their own keys are checked by the engine.
+  EXPECT_EQ(error_of(f, mesh_scene({{{"builtin", "sphere"}, {"scale", 3}}})), "ok");
+  EXPECT_EQ(error_of(f, mesh_scene({{{"builtin", "teapot"}}})), "InvalidScene meshes[0].builtin");
+}
+
+TEST(SceneUpdate, MeshEditsMoveOnlyTheMeshesVersion) {
+  make_tet_obj();
+  Fixture f;
+  SceneState state;
+  json j = mesh_scene({{{"builtin", "sphere"}, {"scale", 3}}});
+  state.apply(f.parse(j));
+  ASSERT_EQ(state.scene().meshes().size(), 1u);
+  const SceneVersions before = state.scene().versions();
+
+  auto expect_only_meshes_moved = [&](const SceneVersions& a, const SceneVersions& b) {
+    EXPECT_NE(a.meshes, b.meshes);
+    EXPECT_EQ(a.data, b.data);
+    EXPECT_EQ(a.transfer_function, b.transfer_function);
+    EXPECT_EQ(a.lights, b.lights);
+    EXPECT_EQ(a.camera, b.camera);
+    EXPECT_EQ(a.material, b.material);
+    EXPECT_EQ(a.geometry, b.geometry);
+    EXPECT_EQ(a.render, b.render);
+  };
+
+  j["meshes"][0]["translate"] = {1, 2, 3};
+  EXPECT_FALSE(state.apply(f.parse(j)));
+  const SceneVersions moved = state.scene().versions();
+  expect_only_meshes_moved(moved, before);
+  EXPECT_EQ(state.scene().meshes()[0].translate, vec3(1, 2, 3));
+
+  j["meshes"].push_back({{"file", "tet.obj"}});
+  state.apply(f.parse(j));
+  const SceneVersions added = state.scene().versions();
+  expect_only_meshes_moved(added, moved);
+  EXPECT_EQ(state.scene().meshes().size(), 2u);
+
+  // Edits elsewhere, or none at all, keep the meshes version.
+  j["camera"]["eye"] = {25, -40, 20};
+  state.apply(f.parse(j));
+  EXPECT_EQ(state.scene().versions().meshes, added.meshes);
+  EXPECT_NE(state.scene().versions().camera, added.camera);
+  j["material"]["ambient"] = 0.2;
+  state.apply(f.parse(j));
+  EXPECT_EQ(state.scene().versions().meshes, added.meshes);
+  state.apply(f.parse(j));
+  EXPECT_EQ(state.scene().versions().meshes, added.meshes);
+
+  // Removing the key removes the meshes.
+  j.erase("meshes");
+  state.apply(f.parse(j));
+  EXPECT_TRUE(state.scene().meshes().empty());
+  EXPECT_NE(state.scene().versions().meshes, added.meshes);
 }
 
 }  // namespace

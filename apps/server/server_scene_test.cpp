@@ -1,11 +1,13 @@
 // Scenes and volumes over loopback: scene JSON round trip, loading another
-// volume, the histogram and time steps, ParaView presets.
+// volume, the histogram and time steps, ParaView presets, meshes.
+#include "penumbra/io/image_io.h"
 #include "penumbra/scene/camera.h"
 #include "server_test_support.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 
 namespace penumbra::server {
 namespace {
@@ -117,6 +119,73 @@ TEST_F(ServerScenes, PresetsBecomeTransferFunctionPoints) {
   EXPECT_EQ(points[1], json({1.0, 1.0, 1.0, 1.0, 1.0}));
   expect_error(c.Post("/api/presets?name=Missing", preset, "application/json"), 422);
   expect_error(c.Post("/api/presets", "{", "application/json"), 422);
+}
+
+TEST_F(ServerScenes, MeshesComeFromTheDataFolderAndRenderWithConvolution) {
+  // A closed tetrahedron, wound counter-clockwise seen from outside.
+  std::ofstream(testing::test_data_dir() / "tet.obj")
+      << "v 0 0 0\nv 4 0 0\nv 0 4 0\nv 0 0 4\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+  const std::string id = server.create_session();
+  auto c = server.client();
+  auto put = [&](const json& scene) {
+    return c.Put(session_path(id, "/scene").c_str(), scene.dump(), "application/json");
+  };
+  json scene = small_scene("convolution");
+  scene["meshes"] = {{{"file", "tet.obj"}, {"translate", {-6, -6, -6}}},
+                     {{"builtin", "sphere"}, {"scale", 3}, {"material", {{"detail", {{"type", "constant"}}}}}}};
+  const auto ok = put(scene);
+  ASSERT_TRUE(ok);
+  ASSERT_EQ(ok->status, 200) << ok->body;
+  const json meshes = json_of(ok).at("scene").at("meshes");
+  ASSERT_EQ(meshes.size(), 2u);
+  EXPECT_EQ(meshes[0].at("file"), "tet.obj");  // as the client named it, not the real path
+  EXPECT_EQ(meshes[1].at("builtin"), "sphere");
+
+  const auto r = frame(id, frame_body(16, 16, "png"));
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 200) << r->body;
+  EXPECT_EQ(r->get_header_value("X-Technique"), "convolution");
+  const Image image = decode_png(std::span(reinterpret_cast<const std::uint8_t*>(r->body.data()), r->body.size()));
+  EXPECT_EQ(image.width(), 16);
+  EXPECT_EQ(image.height(), 16);
+  // The meshes are drawn: without them the same view looks different.
+  json plain = scene;
+  plain.erase("meshes");
+  ASSERT_EQ(put(plain)->status, 200);
+  const auto without = frame(id, frame_body(16, 16, "png"));
+  ASSERT_TRUE(without);
+  ASSERT_EQ(without->status, 200) << without->body;
+  EXPECT_NE(without->body, r->body) << "the meshes changed nothing in the frame";
+  ASSERT_EQ(put(scene)->status, 200);
+
+  // Files outside the folder, missing or of the wrong kind: a JSON error naming the key.
+  json bad = scene;
+  bad["meshes"][0]["file"] = "../x.obj";
+  expect_error(put(bad), 400, "meshes[0].file");
+  bad["meshes"][0]["file"] = (testing::test_data_dir() / "tet.obj").string();
+  expect_error(put(bad), 400, "meshes[0].file");
+  bad["meshes"][0]["file"] = "escape.nrrd";
+  expect_error(put(bad), 403, "meshes[0].file");
+  bad["meshes"][0]["file"] = "missing.obj";
+  expect_error(put(bad), 404, "meshes[0].file");
+  bad["meshes"][0]["file"] = "notes.txt";
+  expect_error(put(bad), 415, "meshes[0].file");
+  std::ofstream(testing::test_data_dir() / "broken.obj") << "v 0 0 0\nf 1 2 3\n";  // an index out of range
+  bad["meshes"][0]["file"] = "broken.obj";
+  expect_error(put(bad), 422);
+  bad = scene;
+  bad["meshes"][1]["material"]["detail"] = {{"type", "texture"}, {"texture", "../outside/secret.nrrd"}};
+  expect_error(put(bad), 400, "meshes[1].material.detail.texture");
+  bad["meshes"][1]["material"]["detail"]["texture"] = "linkdir/secret.nrrd";
+  expect_error(put(bad), 403, "meshes[1].material.detail.texture");
+  bad = scene;
+  bad["meshes"][1]["builtin"] = "teapot";
+  expect_error(put(bad), 400, "meshes[1].builtin");
+
+  // A refused scene leaves the session's scene as it was.
+  const json kept = json_of(c.Get(session_path(id, "/scene").c_str()));
+  ASSERT_EQ(kept.at("meshes").size(), 2u);
+  EXPECT_EQ(kept.at("meshes")[0].at("file"), "tet.obj");
 }
 
 }  // namespace
