@@ -95,10 +95,9 @@ TEST(ConvolutionMeshes, NestedHomogeneousSpheresFollowBeerLambert) {
 }
 
 // The shadow of the sphere on a floor far below, with a tilted directional
-// light from behind the viewer. Each slab's bilinear re-sampling of the light
-// buffer blurs a hard shadow (the blur section 7 of the paper admits; here
-// ~5 px after 100 slabs), but a blur keeps both the shadow's centre and the
-// light it removes: the floor misses lit * integral over the sphere's cross
+// light from behind the viewer. Each slab's re-sampling of the light buffer
+// may blur a hard shadow (the blur section 7 of the paper admits), but a blur
+// keeps both the shadow's centre and the light it removes: the floor misses lit * integral over the sphere's cross
 // section of (1 - exp(-sigma chord)), spread over an area 1 / cos(45 deg)
 // larger, and that missing light is centred where the light through the
 // sphere's centre meets the floor.

@@ -54,6 +54,39 @@ PENUMBRA_HD inline vec3 read_buffer(const vec3* buffer, int width, int height, v
          ty * ((1.0f - tx) * at(x0, y0 + 1) + tx * at(x0 + 1, y0 + 1));
 }
 
+// A sharper read for single-tap kernels (zero-variance lights), where the
+// slab-to-slab re-sampling is the only blur: Catmull-Rom bicubic
+// interpolation reproduces quadratics, so unlike bilinear reads (which add a
+// variance of f (1 - f) texels^2 per axis and step, f the fractional offset)
+// it adds no second moment, and a hard shadow stays hard over hundreds of
+// slabs. Clamped to the four nearest texels' range so its negative lobes
+// cannot ring (light stays within [0, 1] of the light's colour).
+PENUMBRA_HD inline void catmull_rom_weights(float t, float w[4]) {
+  const float t2 = t * t, t3 = t2 * t;
+  w[0] = 0.5f * (-t3 + 2.0f * t2 - t);
+  w[1] = 0.5f * (3.0f * t3 - 5.0f * t2 + 2.0f);
+  w[2] = 0.5f * (-3.0f * t3 + 4.0f * t2 + t);
+  w[3] = 0.5f * (t3 - t2);
+}
+
+PENUMBRA_HD inline vec3 read_buffer_sharp(const vec3* buffer, int width, int height, vec2 p) {
+  const float fx = p.x - 0.5f, fy = p.y - 0.5f;
+  const float x0f = glm::floor(fx), y0f = glm::floor(fy);
+  const int x0 = int(x0f), y0 = int(y0f);
+  float wx[4], wy[4];
+  catmull_rom_weights(fx - x0f, wx);
+  catmull_rom_weights(fy - y0f, wy);
+  auto at = [&](int x, int y) { return buffer[glm::clamp(x, 0, width - 1) + width * glm::clamp(y, 0, height - 1)]; };
+  vec3 sum(0.0f);
+  for (int j = 0; j < 4; ++j) {
+    vec3 row(0.0f);
+    for (int i = 0; i < 4; ++i) row += wx[i] * at(x0 - 1 + i, y0 - 1 + j);
+    sum += wy[j] * row;
+  }
+  const vec3 a = at(x0, y0), b = at(x0 + 1, y0), c = at(x0, y0 + 1), d = at(x0 + 1, y0 + 1);
+  return glm::clamp(sum, glm::min(glm::min(a, b), glm::min(c, d)), glm::max(glm::max(a, b), glm::max(c, d)));
+}
+
 // The convolved light arriving at texel (x, y) of the slab at `depth`.
 PENUMBRA_HD inline vec3 convolve_texel(const SlabFrame& f, const SlabKernel& k, const vec3* previous, int x, int y,
                                        float depth) {
@@ -100,6 +133,10 @@ PENUMBRA_HD inline vec3 convolve_texel_mapped(const SlabFrame& f, const SlabMapp
   const vec2 p = m.center + m.scale * (vec2(float(x) + 0.5f, float(y) + 0.5f) - m.center);
   const float phi = k.pixel_angle(x, y);
   const float c = glm::cos(phi), s = glm::sin(phi);
+  if (k.count == 1) {
+    const vec2 o = k.offset(0, c, s);
+    return read_buffer_sharp(previous, f.width, f.height, p + m.pixels_per_unit * vec2(-o.x, o.y));
+  }
   vec3 sum(0.0f);
   for (int j = 0; j < k.count; ++j) {
     const vec2 o = k.offset(j, c, s);

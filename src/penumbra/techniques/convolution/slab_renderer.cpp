@@ -156,7 +156,10 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
   buffers_.assign(2 * pixels * std::size_t(light_count), vec3(1.0f));
   std::vector<SlabKernelBuilder> kernels;
   std::vector<float> light_path;  // world length of light path per slab
+  std::vector<vec3> light_travel;  // unit direction the light travels
   for (int l = 0; l < light_count; ++l) {
+    const GaussianLight& g = lights[std::size_t(l)];
+    light_travel.push_back(glm::normalize(cam.forward + g.mu.x * cam.right + g.mu.y * cam.up));
     kernels.emplace_back(settings_.kernel, settings_.kernel_samples, e * lights[std::size_t(l)].mu,
                          d1 * e * lights[std::size_t(l)].covariance,
                          mix_bits(settings_.seed * 0x2545f4914f6cdd1dULL + std::uint64_t(l)));
@@ -272,14 +275,20 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
                 }
                 p.color += p.transmittance * highlight;
               }
-              // Each part lit at its middle (attenuated by its own half in
-              // front, the ray caster's midpoint rule) and composited nearest first.
-              auto composite = [&](vec4 sample, float optical_depth, vec3 pos, vec3 index, float v,
+              // Each part is lit at its middle and composited nearest first.
+              // The volume sample's light has crossed the half of the slab in
+              // front of it along the light (the ray caster's midpoint rule):
+              // the medium there is sampled a quarter of the slab back toward
+              // the light, so a surface facing the light is not darkened by
+              // the slab it lies in (taking the sample's own extinction would
+              // treat every slab as a plate across the view). Mesh samples
+              // take the incoming light as it is, as in the paper.
+              auto composite = [&](vec4 sample, const float* half_depth, vec3 pos, vec3 index, float v,
                                    const ScatteringLighting<BufferVisibility>& lighting) {
                 if (!(sample.a > 0.0f)) return;
                 for (std::size_t s = 0; s < slot_of.size(); ++s) {
                   if (slot_of[s] < 0) continue;
-                  vis[s] = incoming[s] * exp_nonpositive(-0.5f * optical_depth * light_path[std::size_t(slot_of[s])]);
+                  vis[s] = half_depth ? incoming[s] * exp_nonpositive(-half_depth[slot_of[s]]) : incoming[s];
                 }
                 ScatteringLighting<BufferVisibility> lit = lighting;
                 lit.visibility.values = vis;
@@ -287,12 +296,23 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
                 p.color += (p.transmittance * sample.a) * lit.sample(sp);
                 p.transmittance *= 1.0f - sample.a;
               };
+              float volume_half[kMaxLights];
+              if (volume_sample.a > 0.0f) {
+                const float fraction = (s1 - s0) / e;
+                for (int l = 0; l < light_count; ++l) {
+                  const float half_path = 0.5f * fraction * light_path[std::size_t(l)];
+                  const vec3 q = volume_pos - 0.5f * half_path * light_travel[std::size_t(l)];
+                  float sigma = 0.0f;
+                  if (view.box.contains(q)) sigma = tf_lookup(shadow.tf, sampler(view.volume.index_from_world(q))).a;
+                  volume_half[l] = sigma * half_path;
+                }
+              }
               if (cover.middle < zs) {
-                composite(mesh_sample, mesh_shadow, mesh_pos, vec3(0.0f), 0.0f, mesh_light);
-                composite(volume_sample, volume_shadow, volume_pos, volume_index, value, volume_light);
+                composite(mesh_sample, nullptr, mesh_pos, vec3(0.0f), 0.0f, mesh_light);
+                composite(volume_sample, volume_half, volume_pos, volume_index, value, volume_light);
               } else {
-                composite(volume_sample, volume_shadow, volume_pos, volume_index, value, volume_light);
-                composite(mesh_sample, mesh_shadow, mesh_pos, vec3(0.0f), 0.0f, mesh_light);
+                composite(volume_sample, volume_half, volume_pos, volume_index, value, volume_light);
+                composite(mesh_sample, nullptr, mesh_pos, vec3(0.0f), 0.0f, mesh_light);
               }
             }
             // (4) the light leaving this slab toward the next.
