@@ -6,8 +6,12 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
+#include <unordered_map>
+#include <utility>
 
 namespace penumbra {
 
@@ -39,6 +43,49 @@ void TriangleMesh::validate(const std::string& name) const {
                                                 tri[k], count));
       }
     }
+  }
+  check_closed(name);
+}
+
+// Closed and consistently wound means every directed edge (a, b) is matched by
+// as many (b, a): then every ray crosses the surface an even number of times
+// and its crossings alternate between entering and leaving. Vertices at the
+// same position count as one (files often split vertices at UV or normal
+// seams; the rasteriser projects equal positions to equal points, so such a
+// mesh is closed for the parity test too).
+void TriangleMesh::check_closed(const std::string& name) const {
+  std::unordered_map<std::uint64_t, std::uint32_t> first_at;
+  first_at.reserve(positions.size());
+  std::vector<std::uint32_t> weld(positions.size());
+  for (std::size_t i = 0; i < positions.size(); ++i) {
+    std::uint32_t bits[3];
+    std::memcpy(bits, &positions[i], sizeof(bits));
+    std::uint64_t h = 1469598103934665603ULL;
+    for (std::uint32_t b : bits) h = (h ^ b) * 1099511628211ULL;
+    // Collisions of different positions fall back to their own index.
+    auto [it, inserted] = first_at.try_emplace(h, std::uint32_t(i));
+    weld[i] = (!inserted && positions[it->second] == positions[i]) ? it->second : std::uint32_t(i);
+  }
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> forward, backward;
+  forward.reserve(3 * triangles.size());
+  backward.reserve(3 * triangles.size());
+  for (const glm::uvec3& t : triangles) {
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t a = weld[t[k]], b = weld[t[(k + 1) % 3]];
+      if (a == b) continue;  // a degenerate edge crosses nothing
+      forward.emplace_back(a, b);
+      backward.emplace_back(b, a);
+    }
+  }
+  std::sort(forward.begin(), forward.end());
+  std::sort(backward.begin(), backward.end());
+  const auto mismatch = std::mismatch(forward.begin(), forward.end(), backward.begin(), backward.end());
+  if (mismatch.first != forward.end() || mismatch.second != backward.end()) {
+    const auto edge = mismatch.first != forward.end() ? *mismatch.first : *mismatch.second;
+    throw InvalidArgument(name, fmt::format("the mesh is not closed and consistently wound: the edge between vertices "
+                                            "{} and {} is not matched by one running the other way (a mesh must "
+                                            "bound a volume for the inside/outside test)",
+                                            edge.first, edge.second));
   }
 }
 

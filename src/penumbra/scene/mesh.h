@@ -30,9 +30,13 @@ struct TriangleMesh {
   std::vector<glm::uvec3> triangles;  // indices into positions, counter-clockwise from outside
 
   Box3 bounds() const;  // of the positions; empty box (lower > upper) for no positions
-  // Throws InvalidArgument(name, ...) for no triangles, an index out of range
-  // or a position that is not finite.
+  // Throws InvalidArgument(name, ...) for no triangles, an index out of range,
+  // a position that is not finite, or a mesh that is not closed and
+  // consistently wound (vertices at equal positions count as one).
   void validate(const std::string& name) const;
+
+ private:
+  void check_closed(const std::string& name) const;
 };
 
 enum class DetailType : std::uint8_t { Constant, Noise, Fbm, Ridged, Texture };

@@ -218,7 +218,7 @@ TEST(TriangleMesh, BoundsAndValidate) {
   mesh.positions.push_back(vec3(0.0f, 0.0f, 0.0f));
   mesh.positions.push_back(vec3(1.0f, -2.0f, 0.0f));
   mesh.positions.push_back(vec3(0.0f, 1.0f, 3.0f));
-  mesh.triangles = {glm::uvec3(0, 1, 2)};
+  mesh.triangles = {glm::uvec3(0, 1, 2), glm::uvec3(0, 2, 1)};  // both sides: closed, if flat
   EXPECT_NO_THROW(mesh.validate("m"));
   EXPECT_EQ(mesh.bounds().lower, vec3(0, -2, 0));
   EXPECT_EQ(mesh.bounds().upper, vec3(1, 1, 3));
@@ -230,9 +230,36 @@ TEST(TriangleMesh, BoundsAndValidate) {
   } catch (const InvalidArgument& e) {
     EXPECT_EQ(e.name(), "meshes[2]");
   }
-  mesh.triangles = {glm::uvec3(0, 1, 2)};
+  mesh.triangles = {glm::uvec3(0, 1, 2), glm::uvec3(0, 2, 1)};
   mesh.positions[1].y = std::nanf("");
   EXPECT_THROW(mesh.validate("m"), InvalidArgument);
+}
+
+// The inside/outside parity needs a closed, consistently wound surface: an
+// open mesh or a flipped triangle is refused, while vertices split at a seam
+// (equal positions, different indices) still close the surface.
+TEST(TriangleMesh, ValidateRequiresAClosedConsistentlyWoundSurface) {
+  TriangleMesh tet;
+  tet.positions = {vec3(0.0f), vec3(1.0f, 0.0f, 0.0f), vec3(0.0f, 1.0f, 0.0f), vec3(0.0f, 0.0f, 1.0f)};
+  tet.triangles = {glm::uvec3(0, 2, 1), glm::uvec3(0, 1, 3), glm::uvec3(0, 3, 2), glm::uvec3(1, 2, 3)};
+  EXPECT_NO_THROW(tet.validate("m"));
+
+  TriangleMesh open = tet;
+  open.triangles.pop_back();
+  EXPECT_THROW(open.validate("m"), InvalidArgument);
+
+  TriangleMesh flipped = tet;
+  flipped.triangles[3] = glm::uvec3(1, 3, 2);
+  EXPECT_THROW(flipped.validate("m"), InvalidArgument);
+
+  TriangleMesh seam = tet;  // the last face with its own copies of the vertices
+  seam.positions.push_back(tet.positions[1]);
+  seam.positions.push_back(tet.positions[2]);
+  seam.positions.push_back(tet.positions[3]);
+  seam.triangles[3] = glm::uvec3(4, 5, 6);
+  EXPECT_NO_THROW(seam.validate("m"));
+  seam.positions[6].z = 1.5f;  // a copy that moved: now a hole
+  EXPECT_THROW(seam.validate("m"), InvalidArgument);
 }
 
 }  // namespace
