@@ -152,12 +152,13 @@ std::vector<Light> read_lights(const json& j) {
   std::vector<Light> lights;
   for (std::size_t i = 0; i < j.size(); ++i) {
     const std::string path = fmt::format("lights[{}]", i);
-    const ObjectReader r(j[i], path, {"type", "direction", "position", "color", "intensity", "angle_deg", "profile", "radius"});
+    const ObjectReader r(j[i], path, {"type", "direction", "position", "color", "intensity", "angle_deg", "angle_y_deg",
+                                      "rotation_deg", "profile", "radius"});
     Light l;
     const std::string type = r.string("type", "directional");
     // Which keys each type takes; any other is an error naming the key.
     auto only = [&](std::initializer_list<const char*> allowed) {
-      for (const char* key : {"direction", "position", "angle_deg", "profile", "radius"}) {
+      for (const char* key : {"direction", "position", "angle_deg", "angle_y_deg", "rotation_deg", "profile", "radius"}) {
         bool ok = false;
         for (const char* a : allowed) ok = ok || std::string_view(a) == key;
         if (!ok && r.has(key)) throw InvalidScene(r.key(key), fmt::format("a {} light has no {}", type, key));
@@ -171,7 +172,7 @@ std::vector<Light> read_lights(const json& j) {
       only({"position"});
     } else if (type == "distant") {
       l.type = LightType::Distant;
-      only({"direction", "angle_deg", "profile"});
+      only({"direction", "angle_deg", "angle_y_deg", "rotation_deg", "profile"});
     } else if (type == "sphere") {
       l.type = LightType::Sphere;
       only({"position", "radius"});
@@ -200,6 +201,20 @@ std::vector<Light> read_lights(const json& j) {
     } else {
       throw InvalidScene(path + ".profile", fmt::format("expected \"uniform\" or \"gaussian\", got \"{}\"", profile));
     }
+    // Anisotropic, rotated spreads: gaussian distant lights only (a uniform
+    // cone stays isotropic). Unset angle_y_deg is the struct's -1 (isotropic).
+    for (const char* key : {"angle_y_deg", "rotation_deg"}) {
+      if (r.has(key) && l.profile != LightProfile::Gaussian) {
+        throw InvalidScene(r.key(key), fmt::format("only a distant light with profile gaussian has {}", key));
+      }
+    }
+    if (r.has("angle_y_deg")) {
+      l.angle_y_deg = r.number("angle_y_deg", l.angle_y_deg);
+      if (!(l.angle_y_deg >= 0.0f)) {
+        throw InvalidScene(r.key("angle_y_deg"), fmt::format("must be in [0, 90), got {}", l.angle_y_deg));
+      }
+    }
+    l.rotation_deg = r.number("rotation_deg", l.rotation_deg);
     lights.push_back(l);
   }
   return lights;
@@ -430,6 +445,8 @@ std::string write_scene_json(const Scene& scene) {
         lj["direction"] = to_json(l.direction);
         lj["angle_deg"] = l.angle_deg;
         lj["profile"] = l.profile == LightProfile::Uniform ? "uniform" : "gaussian";
+        if (l.angle_y_deg >= 0.0f) lj["angle_y_deg"] = l.angle_y_deg;
+        if (l.rotation_deg != 0.0f) lj["rotation_deg"] = l.rotation_deg;
         break;
       case LightType::Sphere:
         lj["type"] = "sphere";

@@ -143,6 +143,59 @@ TEST(SceneJson, ErrorsNameTheKey) {
   EXPECT_EQ(error_key(R"([1, 2])"), "(root)");
 }
 
+// Distant gaussian lights take an optional second spread and a rotation of
+// their frame; unset, the light is isotropic (angle_y_deg = angle_deg) and
+// round trips without the keys. Other lights, and uniform cones, reject them.
+TEST(SceneJson, AnisotropicGaussianLightsReadWriteAndValidate) {
+  const Scene a = parse_scene(R"({"volume": {"builtin": "spheres"}, "lights": [
+      {"type": "distant", "profile": "gaussian", "direction": [0, 0, -1], "angle_deg": 0, "angle_y_deg": 20,
+       "rotation_deg": -70},
+      {"type": "distant", "profile": "gaussian", "direction": [0, 0, -1], "angle_deg": 6}]})", ".");
+  ASSERT_EQ(a.lights().size(), 2u);
+  EXPECT_EQ(a.lights()[0].angle_y_deg, 20.0f);
+  EXPECT_EQ(a.lights()[0].spread_y_deg(), 20.0f);
+  EXPECT_EQ(a.lights()[0].rotation_deg, -70.0f);
+  EXPECT_LT(a.lights()[1].angle_y_deg, 0.0f);  // unset
+  EXPECT_EQ(a.lights()[1].spread_y_deg(), 6.0f);
+  EXPECT_EQ(a.lights()[1].rotation_deg, 0.0f);
+  const std::string text = write_scene_json(a);
+  EXPECT_EQ(text.find("angle_y_deg"), text.rfind("angle_y_deg"));  // written for the first light only
+  const Scene b = parse_scene(text, ".");
+  for (std::size_t i = 0; i < 2; ++i) {
+    EXPECT_EQ(b.lights()[i].angle_y_deg, a.lights()[i].angle_y_deg);
+    EXPECT_EQ(b.lights()[i].rotation_deg, a.lights()[i].rotation_deg);
+  }
+  EXPECT_EQ(error_key(R"({"volume": {"builtin": "spheres"}, "lights": [{"type": "distant", "angle_deg": 5,
+            "angle_y_deg": 3}]})"), "lights[0].angle_y_deg");  // uniform profile
+  EXPECT_EQ(error_key(R"({"volume": {"builtin": "spheres"}, "lights": [{"type": "distant", "rotation_deg": 3}]})"),
+            "lights[0].rotation_deg");
+  EXPECT_EQ(error_key(R"({"volume": {"builtin": "spheres"}, "lights": [{"rotation_deg": 3}]})"),
+            "lights[0].rotation_deg");  // directional
+  EXPECT_EQ(error_key(R"({"volume": {"builtin": "spheres"}, "lights": [{"type": "distant", "profile": "gaussian",
+            "angle_y_deg": -1}]})"), "lights[0].angle_y_deg");
+  EXPECT_EQ(error_key(R"({"volume": {"builtin": "spheres"}, "lights": [{"type": "distant", "profile": "gaussian",
+            "angle_y_deg": 90}]})"), "lights[0].angle_y_deg");
+  // The same checks guard lights set from code.
+  Scene c = a;
+  std::vector<Light> lights = a.lights();
+  lights[1].profile = LightProfile::Uniform;
+  lights[1].angle_y_deg = 3.0f;
+  try {
+    c.set_lights(lights);
+    ADD_FAILURE() << "a uniform light with angle_y_deg was accepted";
+  } catch (const InvalidScene& e) {
+    EXPECT_EQ(e.key(), "lights[1].angle_y_deg");
+  }
+  lights[1].angle_y_deg = -1.0f;
+  lights[1].rotation_deg = 10.0f;
+  try {
+    c.set_lights(lights);
+    ADD_FAILURE() << "a uniform light with rotation_deg was accepted";
+  } catch (const InvalidScene& e) {
+    EXPECT_EQ(e.key(), "lights[1].rotation_deg");
+  }
+}
+
 TEST(SceneJson, TransferFunctionsCanComeFromParaViewPresets) {
   const auto dir = std::filesystem::temp_directory_path() / "penumbra_scene_json_preset";
   std::filesystem::create_directories(dir);

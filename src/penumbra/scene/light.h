@@ -10,7 +10,11 @@
 //                `direction` with half-angle `angle_deg` (profile uniform) or
 //                angular standard deviation `angle_deg` (profile gaussian);
 //                it delivers the same irradiance as a directional light of the
-//                same intensity, and becomes one as the angle goes to 0
+//                same intensity, and becomes one as the angle goes to 0.
+//                A gaussian one may be anisotropic: `angle_deg` is then the
+//                spread along the light frame's x axis, `angle_y_deg` along
+//                its y axis, both turned by `rotation_deg` (distant_light_frame
+//                below; Patel et al. 2013, section 3, eq. 7)
 //   sphere       a sphere of `radius` at `position`, with the power of a point
 //                light of the same intensity (a point light as radius -> 0)
 //   disk         a one-sided disk of `radius` at `position` facing `direction`
@@ -35,14 +39,49 @@ struct Light {
   vec3 position{0.0f};                // point/sphere/disk centre in world units
   vec3 color{1.0f};
   float intensity = 1.0f;
-  float angle_deg = 0.0f;  // distant: cone half-angle (uniform) or standard deviation (gaussian)
+  float angle_deg = 0.0f;  // distant: cone half-angle (uniform) or standard deviation (gaussian; along x)
   LightProfile profile = LightProfile::Uniform;
   float radius = 0.0f;  // sphere, disk
+  // Distant gaussian only: the spread along the light frame's y axis
+  // (negative: unset, the same as angle_deg, an isotropic light) and the
+  // frame's rotation about the central direction, in degrees.
+  float angle_y_deg = -1.0f;
+  float rotation_deg = 0.0f;
 
   PENUMBRA_HD bool at_infinity() const {
     return type == LightType::Directional || type == LightType::Distant || type == LightType::Environment;
   }
+  // The y spread in degrees, angle_deg when unset.
+  PENUMBRA_HD float spread_y_deg() const { return angle_y_deg < 0.0f ? angle_deg : angle_y_deg; }
 };
+
+// The frame of a distant light whose central direction toward the light is
+// the unit vector c (c = -Light::direction). Before rotation:
+//   a = the unit vector perpendicular to c closest to world +x (+x made
+//       orthogonal to c by Gram-Schmidt); world +y instead when c lies
+//       within 1 degree of +-x, where that is ill-conditioned;
+//   b = cross(c, a), so (a, b, c) is right-handed: cross(a, b) = c.
+// Then both turn by rotation_deg about c by the right-hand rule: positive
+// turns a toward b, counter-clockwise as seen from the light looking down
+// into the scene (for a light behind a camera that looks along -c with
+// right = a and up = b, counter-clockwise in the image).
+// Only the line of c matters for a (Gram-Schmidt against c or -c agree).
+PENUMBRA_HD inline void distant_light_frame(vec3 c, float rotation_deg, vec3& a, vec3& b) {
+  const float cos_1deg = 0.99984770f;
+  const vec3 seed = glm::abs(c.x) > cos_1deg ? vec3(0.0f, 1.0f, 0.0f) : vec3(1.0f, 0.0f, 0.0f);
+  const vec3 a0 = glm::normalize(seed - glm::dot(seed, c) * c);
+  const vec3 b0 = glm::cross(c, a0);
+  const float r = glm::radians(rotation_deg);
+  const float cr = glm::cos(r), sr = glm::sin(r);
+  a = cr * a0 + sr * b0;
+  b = -sr * a0 + cr * b0;
+}
+
+// Tangent-plane standard deviations (x, y) of a gaussian distant light on its
+// virtual light plane at unit distance: (tan(angle_deg), tan(angle_y_deg)).
+PENUMBRA_HD inline vec2 gaussian_light_spreads(const Light& light) {
+  return vec2(glm::tan(glm::radians(light.angle_deg)), glm::tan(glm::radians(light.spread_y_deg())));
+}
 
 // What a scattering point sees of a light's centre, before occlusion.
 struct LightSample {

@@ -15,12 +15,19 @@
 //
 // What each light's radiance is (derived from light.h's power statements):
 //   distant, uniform   constant over the cone of half-angle `angle_deg`
-//   distant, gaussian  directions normalize(c + x u + y v), c the central
-//                      direction toward the light, (x, y) ~ N(0, s^2 I) on
-//                      the plane at unit distance perpendicular to c, with
-//                      s = tan(angle_deg): a Gaussian light on the virtual
-//                      light plane (Patel et al. 2013, section 3.2), whose
-//                      mean direction maps to tan(omega) as in the paper
+//   distant, gaussian  directions normalize(c + x a + y b), c the central
+//                      direction toward the light, (a, b) its light frame
+//                      (distant_light_frame in light.h, rotation included),
+//                      x ~ N(0, sx^2) and y ~ N(0, sy^2) independent on the
+//                      plane at unit distance perpendicular to c, with
+//                      sx = tan(angle_deg), sy = tan(angle_y_deg): a Gaussian
+//                      light on the virtual light plane (Patel et al. 2013,
+//                      section 3.2) whose offsets have the covariance
+//                      R diag(sx^2, sy^2) R^T in the unrotated frame; its
+//                      mean direction maps to tan(omega) as in the paper.
+//                      Isotropic lights keep the basis orthonormal_basis(c)
+//                      (the same samples as before anisotropy existed; any
+//                      frame gives the same distribution)
 //   sphere             uniform radiance 4 I / r^2 on a sphere of radius r
 //                      (its power 16 pi^2 I equals the point light's)
 //   disk               one-sided Lambertian, radiance 8 I / r^2 (power
@@ -76,11 +83,6 @@ struct LightDirectionSample {
   vec3 weight{0.0f};                // radiance / pdf / (4 pi); 0 when the point is not lit
 };
 
-// Tangent-plane standard deviation of a Gaussian distant light.
-PENUMBRA_HD inline float gaussian_light_spread(const Light& light) {
-  return glm::tan(glm::radians(light.angle_deg));
-}
-
 // One direction toward `light` as seen from p, from two uniform numbers in
 // [0, 1). Exact (zero-variance weight) for directional, point and distant
 // lights; sphere lights are sampled uniformly in the solid angle they
@@ -97,18 +99,31 @@ PENUMBRA_HD inline LightDirectionSample sample_light_direction(const Light& ligh
     case LightType::Distant: {
       const vec3 centre = -light.direction;
       s.weight = power;
-      if (light.angle_deg <= 0.0f) {
+      if (light.profile == LightProfile::Uniform) {
+        if (light.angle_deg <= 0.0f) {
+          s.to_light = centre;
+        } else {
+          const float half_sin = glm::sin(0.5f * glm::radians(light.angle_deg));
+          s.to_light = sample_uniform_cone(centre, 2.0f * half_sin * half_sin, u);  // 1 - cos = 2 sin^2(a / 2)
+        }
+        return s;
+      }
+      const vec2 spread = gaussian_light_spreads(light);
+      if (spread.x <= 0.0f && spread.y <= 0.0f) {
         s.to_light = centre;
-      } else if (light.profile == LightProfile::Uniform) {
-        const float half_sin = glm::sin(0.5f * glm::radians(light.angle_deg));
-        s.to_light = sample_uniform_cone(centre, 2.0f * half_sin * half_sin, u);  // 1 - cos = 2 sin^2(a / 2)
-      } else {
-        // Box-Muller: a 2D normal offset on the virtual light plane.
-        const float r = gaussian_light_spread(light) * glm::sqrt(-2.0f * glm::log(1.0f - u.x));
-        const float phi = 2.0f * kPi * u.y;
-        vec3 t, b;
+        return s;
+      }
+      // Box-Muller: two independent unit normals (r cos phi, r sin phi),
+      // scaled per axis of the light frame.
+      const float r = glm::sqrt(-2.0f * glm::log(1.0f - u.x));
+      const float phi = 2.0f * kPi * u.y;
+      vec3 t, b;
+      if (spread.x == spread.y) {
         orthonormal_basis(centre, t, b);
-        s.to_light = glm::normalize(centre + r * (glm::cos(phi) * t + glm::sin(phi) * b));
+        s.to_light = glm::normalize(centre + (spread.x * r) * (glm::cos(phi) * t + glm::sin(phi) * b));
+      } else {
+        distant_light_frame(centre, light.rotation_deg, t, b);
+        s.to_light = glm::normalize(centre + (spread.x * r * glm::cos(phi)) * t + (spread.y * r * glm::sin(phi)) * b);
       }
       return s;
     }

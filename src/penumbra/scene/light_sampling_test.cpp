@@ -163,6 +163,113 @@ TEST(LightSampling, GaussianDistantLightIsGaussianOnTheVirtualLightPlane) {
   EXPECT_NEAR(sy / n, 0.0, 5.0 * std::sqrt(variance / n));
 }
 
+// The light frame (light.h): a is world +x made orthogonal to c, b =
+// cross(c, a), (a, b, c) right-handed; +y replaces +x within 1 degree of +-x;
+// rotation turns a toward b about c.
+TEST(LightSampling, DistantLightFrameIsGramSchmidtOfXThenRotated) {
+  vec3 a, b;
+  distant_light_frame(vec3(0.0f, 0.0f, 1.0f), 0.0f, a, b);  // a light overhead
+  EXPECT_NEAR(glm::distance(a, vec3(1.0f, 0.0f, 0.0f)), 0.0f, 1e-6f);
+  EXPECT_NEAR(glm::distance(b, vec3(0.0f, 1.0f, 0.0f)), 0.0f, 1e-6f);
+  distant_light_frame(vec3(0.0f, 0.0f, 1.0f), 90.0f, a, b);  // counter-clockwise seen from the light
+  EXPECT_NEAR(glm::distance(a, vec3(0.0f, 1.0f, 0.0f)), 0.0f, 1e-6f);
+  EXPECT_NEAR(glm::distance(b, vec3(-1.0f, 0.0f, 0.0f)), 0.0f, 1e-6f);
+  Pcg32 rng(23);
+  for (int i = 0; i < 200; ++i) {
+    const vec3 c = sample_uniform_sphere(next2(rng));
+    const float rot = 360.0f * rng.next_float() - 180.0f;
+    if (std::abs(c.x) > 0.9998f) continue;  // the +y case, checked below
+    vec3 a0, b0;
+    distant_light_frame(c, 0.0f, a0, b0);
+    distant_light_frame(c, rot, a, b);
+    // Unrotated a: +x minus its component along c, normalised (and so the
+    // unit vector perpendicular to c with the largest x).
+    const vec3 gx = vec3(1.0f, 0.0f, 0.0f) - c.x * c;
+    EXPECT_NEAR(glm::distance(a0, gx / glm::length(gx)), 0.0f, 1e-4f);
+    EXPECT_NEAR(glm::dot(glm::cross(a0, b0), c), 1.0f, 1e-5f);
+    EXPECT_NEAR(glm::length(a), 1.0f, 1e-5f);
+    EXPECT_NEAR(glm::dot(a, c), 0.0f, 1e-5f);
+    EXPECT_NEAR(glm::dot(glm::cross(a, b), c), 1.0f, 1e-5f);
+    const float r = glm::radians(rot);
+    EXPECT_NEAR(glm::dot(a, a0), std::cos(r), 1e-5f);
+    EXPECT_NEAR(glm::dot(a, b0), std::sin(r), 1e-5f);
+  }
+  // Along -x: Gram-Schmidt of +y; b = cross(-x, y) = -z.
+  distant_light_frame(vec3(-1.0f, 0.0f, 0.0f), 0.0f, a, b);
+  EXPECT_NEAR(glm::distance(a, vec3(0.0f, 1.0f, 0.0f)), 0.0f, 1e-6f);
+  EXPECT_NEAR(glm::distance(b, vec3(0.0f, 0.0f, -1.0f)), 0.0f, 1e-6f);
+}
+
+// An anisotropic, rotated Gaussian light: offsets (x, y) on the virtual
+// light plane, in the unrotated frame, have covariance
+// R diag(tan^2 ax, tan^2 ay) R^T and mean 0.
+TEST(LightSampling, AnisotropicGaussianLightHasTheRotatedCovariance) {
+  Light l = make_light(LightType::Distant);
+  l.profile = LightProfile::Gaussian;
+  l.direction = glm::normalize(vec3(0.3f, -0.4f, -1.0f));
+  l.angle_deg = 3.0f;
+  l.angle_y_deg = 12.0f;
+  l.rotation_deg = 35.0f;
+  const vec3 centre = -l.direction;
+  vec3 a0, b0;
+  distant_light_frame(centre, 0.0f, a0, b0);
+  Pcg32 rng(29);
+  const int n = 50000;
+  double sx = 0.0, sy = 0.0, sxx = 0.0, syy = 0.0, sxy = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const LightDirectionSample s = sample_light_direction(l, vec3(0.0f), next2(rng));
+    ASSERT_EQ(s.weight, l.color * l.intensity);
+    const vec3 w = s.to_light;
+    const double x = glm::dot(w, a0) / glm::dot(w, centre);
+    const double y = glm::dot(w, b0) / glm::dot(w, centre);
+    sx += x, sy += y, sxx += x * x, syy += y * y, sxy += x * y;
+  }
+  const double vx = std::pow(std::tan(glm::radians(3.0)), 2.0), vy = std::pow(std::tan(glm::radians(12.0)), 2.0);
+  const double c = std::cos(glm::radians(35.0)), si = std::sin(glm::radians(35.0));
+  const double exx = c * c * vx + si * si * vy, eyy = si * si * vx + c * c * vy, exy = c * si * (vx - vy);
+  // Standard error of a second-moment estimate E[x y] of a zero-mean normal
+  // pair: sqrt((Sxx Syy + Sxy^2) / n); 5 of them (~0.7% relative here).
+  auto tol = [&](double s1, double s2, double s12) { return 5.0 * std::sqrt((s1 * s2 + s12 * s12) / n); };
+  EXPECT_NEAR(sxx / n, exx, tol(exx, exx, exx));
+  EXPECT_NEAR(syy / n, eyy, tol(eyy, eyy, eyy));
+  EXPECT_NEAR(sxy / n, exy, tol(exx, eyy, exy));
+  EXPECT_NEAR(sx / n, 0.0, 5.0 * std::sqrt(exx / n));
+  EXPECT_NEAR(sy / n, 0.0, 5.0 * std::sqrt(eyy / n));
+  // A spread of 0 along x: every offset lies on the rotated y axis.
+  l.angle_deg = 0.0f;
+  vec3 a, b;
+  distant_light_frame(centre, l.rotation_deg, a, b);
+  for (int i = 0; i < 100; ++i) {
+    const vec3 w = sample_light_direction(l, vec3(0.0f), next2(rng)).to_light;
+    ASSERT_NEAR(glm::dot(w, a), 0.0f, 1e-6f);
+  }
+}
+
+// Setting angle_y_deg = angle_deg (any rotation) is the isotropic light,
+// sample for sample: orthonormal_basis(c) and the same Box-Muller offset.
+TEST(LightSampling, IsotropicGaussianLightIsUnchangedByTheNewKeys) {
+  Light l = make_light(LightType::Distant);
+  l.profile = LightProfile::Gaussian;
+  l.direction = glm::normalize(vec3(-0.5f, 0.1f, -1.0f));
+  l.angle_deg = 8.0f;
+  Light same = l;
+  same.angle_y_deg = 8.0f;
+  same.rotation_deg = 40.0f;
+  vec3 t, b;
+  orthonormal_basis(-l.direction, t, b);
+  const float s = std::tan(glm::radians(8.0f));
+  Pcg32 rng(31);
+  for (int i = 0; i < 100; ++i) {
+    const vec2 u = next2(rng);
+    const vec3 w = sample_light_direction(l, vec3(0.0f), u).to_light;
+    const float r = s * std::sqrt(-2.0f * std::log(1.0f - u.x));
+    const float phi = 2.0f * kPi * u.y;
+    const vec3 expected = glm::normalize(-l.direction + r * (std::cos(phi) * t + std::sin(phi) * b));
+    ASSERT_NEAR(glm::distance(w, expected), 0.0f, 1e-6f);
+    ASSERT_EQ(sample_light_direction(same, vec3(0.0f), u).to_light, w);
+  }
+}
+
 TEST(LightSampling, EnvironmentIsUniformOverTheSphere) {
   const Light l = make_light(LightType::Environment);
   Pcg32 rng(19);

@@ -99,6 +99,21 @@ void Scene::set_lights(std::vector<Light> lights) {
     if (!(l.angle_deg >= 0.0f && l.angle_deg < 90.0f)) {
       throw InvalidScene(key + ".angle_deg", fmt::format("must be in [0, 90), got {}", l.angle_deg));
     }
+    // Anisotropy and rotation belong to distant gaussian lights only; a
+    // negative angle_y_deg means unset (isotropic).
+    const bool gaussian = l.type == LightType::Distant && l.profile == LightProfile::Gaussian;
+    if (!(l.angle_y_deg < 0.0f)) {  // set, or NaN
+      if (!gaussian) throw InvalidScene(key + ".angle_y_deg", "only a distant light with profile gaussian has one");
+      if (!(l.angle_y_deg < 90.0f)) {
+        throw InvalidScene(key + ".angle_y_deg", fmt::format("must be in [0, 90), got {}", l.angle_y_deg));
+      }
+    }
+    if (!is_finite(l.rotation_deg)) {
+      throw InvalidScene(key + ".rotation_deg", fmt::format("must be finite, got {}", l.rotation_deg));
+    }
+    if (l.rotation_deg != 0.0f && !gaussian) {
+      throw InvalidScene(key + ".rotation_deg", "only a distant light with profile gaussian has one");
+    }
     if (!(l.radius >= 0.0f && is_finite(l.radius))) {
       throw InvalidScene(key + ".radius", fmt::format("must be finite and >= 0, got {}", l.radius));
     }

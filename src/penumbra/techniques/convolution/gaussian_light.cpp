@@ -49,21 +49,29 @@ GaussianLight gaussian_light(const Light& light, const CameraView& camera, vec3 
     g.covariance = rotated_covariance(o.sigma_x2, glm::max(o.sigma_y2, 0.0f), o.rotation_deg);
     return g;
   }
-  float variance = 0.0f;
+  vec2 variance(0.0f);  // along the light frame's (a, b)
   if (light.type == LightType::Distant) {
-    const float t = std::tan(glm::radians(glm::clamp(light.angle_deg, 0.0f, 89.0f)));
-    variance = light.profile == LightProfile::Gaussian ? t * t : 0.25f * t * t;
+    const float tx = std::tan(glm::radians(glm::clamp(light.angle_deg, 0.0f, 89.0f)));
+    if (light.profile == LightProfile::Gaussian) {
+      const float ty = std::tan(glm::radians(glm::clamp(light.spread_y_deg(), 0.0f, 89.0f)));
+      variance = vec2(tx * tx, ty * ty);
+    } else {
+      variance = vec2(0.25f * tx * tx);
+    }
   }
-  if (variance <= 0.0f) return g;
-  // Jacobian of w -> lateral slope of (d + w) at w = 0, for w in the plane of d.
-  const vec3 a = glm::normalize(glm::abs(d.x) < 0.9f ? glm::cross(d, vec3(1, 0, 0)) : glm::cross(d, vec3(0, 1, 0)));
-  const vec3 b = glm::cross(d, a);
+  if (variance.x <= 0.0f && variance.y <= 0.0f) return g;
+  // Jacobian of w -> lateral slope of (d + w) at w = 0, for w in the plane of
+  // d, applied to the light frame's axes (frame of the direction toward the
+  // light, -d; the sign of w does not change a covariance).
+  vec3 a, b;
+  distant_light_frame(-d, light.type == LightType::Distant ? light.rotation_deg : 0.0f, a, b);
   auto column = [&](vec3 w) {
     const vec2 w_lat(glm::dot(w, camera.right), glm::dot(w, camera.up));
     return w_lat / g.cos_view - d_lat * (glm::dot(w, camera.forward) / (g.cos_view * g.cos_view));
   };
   const glm::mat2 j(column(a), column(b));
-  g.covariance = variance * j * glm::transpose(j);
+  const glm::mat2 diag(variance.x, 0.0f, 0.0f, variance.y);
+  g.covariance = j * diag * glm::transpose(j);
   return g;
 }
 

@@ -13,9 +13,13 @@
 // Mapping from the scene's lights (unless the technique's light_sigma_x2 /
 // light_sigma_y2 / light_rotation_deg override the covariance for all lights):
 //   distant, profile gaussian: directions normalize(c + x a + y b) with
-//     (x, y) ~ N(0, tan(angle)^2 I) in the plane of c; Sigma is that
-//     covariance carried to the slab plane by the Jacobian of d -> mu at c
-//     (exact to first order; equal to tan(angle)^2 I when c = f);
+//     (a, b) the light frame (distant_light_frame in light.h, rotation
+//     included) and x ~ N(0, tan(angle_deg)^2), y ~ N(0, tan(angle_y_deg)^2)
+//     independent; Sigma is that covariance carried to the slab plane by the
+//     Jacobian J of d -> mu at c: Sigma = J diag(tx^2, ty^2) J^T, J's columns
+//     the images of a and b (exact to first order; equal to
+//     R diag(tx^2, ty^2) R^T when c = -f and the unrotated frame is the
+//     camera's (right, up), R the rotation by rotation_deg);
 //   distant, profile uniform: the cone's disk of radius tan(angle) has
 //     variance tan(angle)^2 / 4 per axis, carried the same way;
 //   directional: Sigma = 0 (hard shadows);
@@ -23,7 +27,8 @@
 //     the box centre (the method has only distant lights);
 //   environment: no buffer (they carry no radiance in the shared shading).
 // Lights must come from behind the viewer: a light more than 85 degrees from
-// the view direction is clamped to 85 degrees (the method cannot represent it).
+// the view direction is clamped to 85 degrees (the method cannot represent it);
+// the light frame is then that of the clamped direction.
 #include "penumbra/base/math.h"
 #include "penumbra/scene/camera.h"
 #include "penumbra/scene/light.h"
