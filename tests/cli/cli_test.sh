@@ -65,6 +65,11 @@ out=$("$bin" bench "$src/scenes/spheres.json" --technique emission-absorption --
 for key in technique volume dims image tf_change_ms light_move_ms frame_ms_median frame_ms_min aux_bytes threads; do
   grep -q "\"$key\": " <<<"$out" || fail "bench output lacks \"$key\": $out"
 done
+grep -q '"passes_per_frame": 0}' <<<"$out" || fail "ray casters report no sweep passes: $out"
+# convolution reports its slab count, about depth / slab distance.
+out=$("$bin" bench "$src/scenes/spheres.json" --technique convolution --frames 1 --size 16x16 --param slab_distance=2 2>&1)
+slabs=$(sed -n 's/.*"passes_per_frame": \([0-9]*\).*/\1/p' <<<"$out")
+[ -n "$slabs" ] && [ "$slabs" -gt 10 ] && [ "$slabs" -lt 200 ] || fail "convolution bench reports $slabs slabs: $out"
 expect 2 "teapot" -- "$bin" bench "$src/scenes/spheres.json" --technique teapot --frames 1
 
 if [ "$failures" -gt 0 ]; then

@@ -21,6 +21,7 @@ PENUMBRA_HD inline float pixel_sample_offset(const RenderView& v, int x, int y) 
 struct RenderStats {
   std::uint64_t samples = 0;
   std::uint64_t rays = 0;
+  std::uint64_t passes = 0;  // sweep steps of sweeping techniques (convolution's slabs); 0 for the others
 };
 
 // Renders every pixel with march_ray. make_lighting(sampler) returns the

@@ -303,7 +303,9 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
                   const float half_path = 0.5f * fraction * light_path[std::size_t(l)];
                   const vec3 q = volume_pos - 0.5f * half_path * light_travel[std::size_t(l)];
                   float sigma = 0.0f;
-                  if (view.box.contains(q)) sigma = tf_lookup(shadow.tf, sampler(view.volume.index_from_world(q))).a;
+                  if (view.box.contains(q) && inside_clip_planes(q, view.clip_planes, view.clip_plane_count)) {
+                    sigma = tf_lookup(shadow.tf, sampler(view.volume.index_from_world(q))).a;
+                  }
                   volume_half[l] = sigma * half_path;
                 }
               }
@@ -360,6 +362,7 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
   if (stats) {
     stats->samples += samples.load();
     stats->rays += pixels;
+    stats->passes += std::uint64_t(slabs);
   }
 }
 
