@@ -43,6 +43,14 @@ struct RenderView {
   CameraView camera;
   int width = 0;
   int height = 0;
+
+  // The majorant of the macrocell around an index-space point (clamped to
+  // the grid): 0 where no sample can have extinction, so a kernel may skip
+  // the volume lookup there.
+  PENUMBRA_HD float majorant_at(vec3 index) const {
+    const ivec3 c = glm::clamp(ivec3(glm::floor(index / float(macrocells.cell_size))), ivec3(0), macrocells.dims - 1);
+    return majorants[macrocells.index(c)];
+  }
 };
 
 }  // namespace penumbra

@@ -4,7 +4,7 @@
 
 namespace penumbra {
 
-void convolve_slab(const SlabFrame& frame, const SlabKernel& kernel, const vec3* previous, vec3* incoming,
+void convolve_slab(const SlabFrame& frame, const SlabKernel& kernel, const float* previous, float* incoming,
                    float depth) {
   const SlabMapping mapping = slab_mapping(frame, depth);
   parallel_for(0, frame.height, [&](std::int64_t first, std::int64_t last) {

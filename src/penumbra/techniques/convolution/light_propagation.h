@@ -44,7 +44,7 @@ PENUMBRA_HD inline vec2 pixel_of(const SlabFrame& f, vec3 q) {
               (1.0f - sy / c.half_height) * 0.5f * float(f.height));
 }
 
-PENUMBRA_HD inline vec3 read_buffer(const vec3* buffer, int width, int height, vec2 p) {
+PENUMBRA_HD inline float read_buffer(const float* buffer, int width, int height, vec2 p) {
   const float fx = p.x - 0.5f, fy = p.y - 0.5f;
   const float x0f = glm::floor(fx), y0f = glm::floor(fy);
   const float tx = fx - x0f, ty = fy - y0f;
@@ -69,7 +69,7 @@ PENUMBRA_HD inline void catmull_rom_weights(float t, float w[4]) {
   w[3] = 0.5f * (t3 - t2);
 }
 
-PENUMBRA_HD inline vec3 read_buffer_sharp(const vec3* buffer, int width, int height, vec2 p) {
+PENUMBRA_HD inline float read_buffer_sharp(const float* buffer, int width, int height, vec2 p) {
   const float fx = p.x - 0.5f, fy = p.y - 0.5f;
   const float x0f = glm::floor(fx), y0f = glm::floor(fy);
   const int x0 = int(x0f), y0 = int(y0f);
@@ -77,23 +77,23 @@ PENUMBRA_HD inline vec3 read_buffer_sharp(const vec3* buffer, int width, int hei
   catmull_rom_weights(fx - x0f, wx);
   catmull_rom_weights(fy - y0f, wy);
   auto at = [&](int x, int y) { return buffer[glm::clamp(x, 0, width - 1) + width * glm::clamp(y, 0, height - 1)]; };
-  vec3 sum(0.0f);
+  float sum = 0.0f;
   for (int j = 0; j < 4; ++j) {
-    vec3 row(0.0f);
+    float row = 0.0f;
     for (int i = 0; i < 4; ++i) row += wx[i] * at(x0 - 1 + i, y0 - 1 + j);
     sum += wy[j] * row;
   }
-  const vec3 a = at(x0, y0), b = at(x0 + 1, y0), c = at(x0, y0 + 1), d = at(x0 + 1, y0 + 1);
+  const float a = at(x0, y0), b = at(x0 + 1, y0), c = at(x0, y0 + 1), d = at(x0 + 1, y0 + 1);
   return glm::clamp(sum, glm::min(glm::min(a, b), glm::min(c, d)), glm::max(glm::max(a, b), glm::max(c, d)));
 }
 
 // The convolved light arriving at texel (x, y) of the slab at `depth`.
-PENUMBRA_HD inline vec3 convolve_texel(const SlabFrame& f, const SlabKernel& k, const vec3* previous, int x, int y,
+PENUMBRA_HD inline float convolve_texel(const SlabFrame& f, const SlabKernel& k, const float* previous, int x, int y,
                                        float depth) {
   const vec3 p = slab_point(f, x, y, depth) - f.slab_distance * f.camera.forward;
   const float phi = k.pixel_angle(x, y);
   const float c = glm::cos(phi), s = glm::sin(phi);
-  vec3 sum(0.0f);
+  float sum = 0.0f;
   for (int j = 0; j < k.count; ++j) {
     const vec2 o = k.offset(j, c, s);
     const vec3 q = p - o.x * f.camera.right - o.y * f.camera.up;
@@ -128,16 +128,20 @@ PENUMBRA_HD inline SlabMapping slab_mapping(const SlabFrame& f, float depth) {
 }
 
 // convolve_texel through the affine map (what convolve_slab runs).
-PENUMBRA_HD inline vec3 convolve_texel_mapped(const SlabFrame& f, const SlabMapping& m, const SlabKernel& k,
-                                              const vec3* previous, int x, int y) {
+PENUMBRA_HD inline float convolve_texel_mapped(const SlabFrame& f, const SlabMapping& m, const SlabKernel& k,
+                                               const float* previous, int x, int y) {
   const vec2 p = m.center + m.scale * (vec2(float(x) + 0.5f, float(y) + 0.5f) - m.center);
-  const float phi = k.pixel_angle(x, y);
-  const float c = glm::cos(phi), s = glm::sin(phi);
+  float c = 1.0f, s = 0.0f;
+  if (k.rotate_per_pixel) {
+    const float phi = k.pixel_angle(x, y);
+    c = glm::cos(phi);
+    s = glm::sin(phi);
+  }
   if (k.count == 1) {
     const vec2 o = k.offset(0, c, s);
     return read_buffer_sharp(previous, f.width, f.height, p + m.pixels_per_unit * vec2(-o.x, o.y));
   }
-  vec3 sum(0.0f);
+  float sum = 0.0f;
   for (int j = 0; j < k.count; ++j) {
     const vec2 o = k.offset(j, c, s);
     sum += k.weights[j] * read_buffer(previous, f.width, f.height, p + m.pixels_per_unit * vec2(-o.x, o.y));
@@ -146,7 +150,7 @@ PENUMBRA_HD inline vec3 convolve_texel_mapped(const SlabFrame& f, const SlabMapp
 }
 
 // The whole buffer for the slab at `depth` (parallel over rows).
-void convolve_slab(const SlabFrame& frame, const SlabKernel& kernel, const vec3* previous, vec3* incoming,
+void convolve_slab(const SlabFrame& frame, const SlabKernel& kernel, const float* previous, float* incoming,
                    float depth);
 
 }  // namespace penumbra

@@ -112,7 +112,7 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
 
   const std::size_t pixels = std::size_t(width) * std::size_t(height);
   check_memory_budget("convolution buffers",
-                      checked_product({pixels, 2 * std::uint64_t(light_count) * sizeof(vec3) + sizeof(PixelState)}));
+                      checked_product({pixels, 2 * std::uint64_t(light_count) * sizeof(float) + sizeof(PixelState)}));
   if (!meshes_.empty()) meshes_.build_ldi(cam, width, height);
   const MeshesView meshes = meshes_.view();
   const bool has_meshes = meshes.count > 0;
@@ -153,7 +153,7 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
   }
   last_slabs_ = slabs;
 
-  buffers_.assign(2 * pixels * std::size_t(light_count), vec3(1.0f));
+  buffers_.assign(2 * pixels * std::size_t(light_count), 1.0f);
   std::vector<SlabKernelBuilder> kernels;
   std::vector<float> light_path;  // world length of light path per slab
   std::vector<vec3> light_travel;  // unit direction the light travels
@@ -206,18 +206,16 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
           for (int x = 0; x < width; ++x) {
             const std::size_t i = std::size_t(x) + std::size_t(width) * std::size_t(y);
             PixelState& p = px[i];
+            if (p.done) continue;  // behind an opaque plane: nothing of this pixel is left to see or to shadow
             const bool plane_here = p.plane >= 0 && p.z_plane < z1;
-            for (std::size_t s = 0; s < slot_of.size(); ++s) {
-              if (slot_of[s] >= 0) incoming[s] = buffer(slot_of[s], current)[i];
-            }
-            const bool shading = !p.done && p.transmittance > min_transmittance;
+            const bool shading = p.transmittance > min_transmittance;
 
             // The volume: the part of the slab inside the box and clip planes,
             // sampled at its middle (DESIGN-NOTES "Sampling": segments sum to
             // the chord, so a homogeneous medium integrates exactly).
             const float s0 = glm::max(z0, p.z_in), s1 = glm::min(z1, p.z_out);
             const float zs = 0.5f * (s0 + s1);
-            const bool volume_here = s1 > s0 && !(p.plane >= 0 && p.z_plane <= zs);
+            bool volume_here = s1 > s0 && !(p.plane >= 0 && p.z_plane <= zs);
             vec4 volume_sample(0.0f);  // (rgb, alpha) along the viewing ray
             float volume_shadow = 0.0f;  // optical depth toward the lights per unit light path
             float value = 0.0f;
@@ -225,6 +223,14 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
             if (volume_here) {
               volume_pos = slab_point(frame, x, int(y), zs);
               volume_index = view.volume.index_from_world(volume_pos);
+              // Empty space (no extinction for the TF or the shadow TF) costs no
+              // volume lookup; preintegrated segments may reach into it, so they look.
+              if (!use_preintegration && view.majorant_at(volume_index) <= 0.0f &&
+                  shadow.majorant_at(volume_index) <= 0.0f) {
+                volume_here = false;
+              }
+            }
+            if (volume_here) {
               value = sampler(volume_index);
               ++count;
               const float fraction = (s1 - s0) / e;
@@ -261,6 +267,10 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
               }
             }
 
+            if (!volume_here && cover.length <= 0.0f && cover.entry < 0 && !plane_here) continue;  // empty here
+            for (std::size_t s = 0; s < slot_of.size(); ++s) {
+              if (slot_of[s] >= 0) incoming[s] = vec3(buffer(slot_of[s], current)[i]);
+            }
             if (shading) {
               // The highlight of the first surface entered in this slab.
               if (cover.entry >= 0) {
@@ -304,7 +314,8 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
                   const vec3 q = volume_pos - 0.5f * half_path * light_travel[std::size_t(l)];
                   float sigma = 0.0f;
                   if (view.box.contains(q) && inside_clip_planes(q, view.clip_planes, view.clip_plane_count)) {
-                    sigma = tf_lookup(shadow.tf, sampler(view.volume.index_from_world(q))).a;
+                    const vec3 qi = view.volume.index_from_world(q);
+                    if (shadow.majorant_at(qi) > 0.0f) sigma = tf_lookup(shadow.tf, sampler(qi)).a;
                   }
                   volume_half[l] = sigma * half_path;
                 }
@@ -324,10 +335,10 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
                 buffer(l, current)[i] *= exp_nonpositive(-optical_depth * light_path[std::size_t(l)]);
               }
             }
-            if (plane_here && !p.done) {
+            if (plane_here) {
               // Lit by the light that crossed this slab's medium in front of it.
               for (std::size_t s = 0; s < slot_of.size(); ++s) {
-                if (slot_of[s] >= 0) vis[s] = buffer(slot_of[s], current)[i];
+                if (slot_of[s] >= 0) vis[s] = vec3(buffer(slot_of[s], current)[i]);
               }
               shade_plane(p, x, int(y), vis);
             }
@@ -349,7 +360,7 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
         PixelState& p = px[i];
         if (!p.done && p.plane >= 0) {
           for (std::size_t s = 0; s < slot_of.size(); ++s) {
-            if (slot_of[s] >= 0) vis[s] = light_count > 0 && slabs > 0 ? buffer(slot_of[s], current)[i] : vec3(1.0f);
+            if (slot_of[s] >= 0) vis[s] = light_count > 0 && slabs > 0 ? vec3(buffer(slot_of[s], current)[i]) : vec3(1.0f);
           }
           shade_plane(p, x, int(y), vis);
         }
@@ -367,7 +378,7 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
 }
 
 std::uint64_t SlabRenderer::aux_bytes() const {
-  return buffers_.size() * sizeof(vec3) + meshes_.bytes() + (settings_.preintegrated ? preintegration_.bytes() : 0);
+  return buffers_.size() * sizeof(float) + meshes_.bytes() + (settings_.preintegrated ? preintegration_.bytes() : 0);
 }
 
 }  // namespace penumbra

@@ -65,7 +65,7 @@ class SlabRenderer {
   MeshResources meshes_;
   PreintegrationCache preintegration_;
   SlabSettings settings_;
-  std::vector<vec3> buffers_;  // 2 per light, ping-pong
+  std::vector<float> buffers_;  // 2 per light, ping-pong: the light's transmittance (grey, DESIGN-NOTES)
   int last_slabs_ = 0;
 };
 

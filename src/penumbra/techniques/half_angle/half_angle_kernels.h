@@ -94,11 +94,7 @@ struct HalfAngleKernel {
   }
 
   // True when the macrocell around index-space point i can hold extinction.
-  PENUMBRA_HD static bool occupied(const RenderView& v, vec3 i) {
-    const MacrocellView& m = v.macrocells;
-    const ivec3 c = glm::clamp(ivec3(i / float(m.cell_size)), ivec3(0), m.dims - 1);
-    return v.majorants[m.index(c)] > 0.0f;
-  }
+  PENUMBRA_HD static bool occupied(const RenderView& v, vec3 i) { return v.majorant_at(i) > 0.0f; }
 
   PENUMBRA_HD bool inside(vec3 p) const {
     return view->box.contains(p) && inside_clip_planes(p, view->clip_planes, view->clip_plane_count);

@@ -22,9 +22,7 @@ template <class Sampler> struct ExtinctionField {
     const RenderView& v = *view;
     if (!v.box.contains(world) || !inside_clip_planes(world, v.clip_planes, v.clip_plane_count)) return 0.0f;
     const vec3 index = v.volume.index_from_world(world);
-    const ivec3 cell = glm::clamp(ivec3(glm::floor(index / float(v.macrocells.cell_size))), ivec3(0),
-                                  v.macrocells.dims - 1);
-    if (v.majorants[v.macrocells.index(cell)] <= 0.0f) return 0.0f;
+    if (v.majorant_at(index) <= 0.0f) return 0.0f;
     return v.tf.lookup(sampler(index)).a;
   }
 };
