@@ -1,10 +1,12 @@
 #include "test_scene.h"
 
 #include "penumbra/io/image_io.h"
+#include "penumbra/io/scene_json.h"
 #include "penumbra/render/parameters.h"
 #include "penumbra/techniques/registry.h"
 
 #include <cstdlib>
+#include <filesystem>
 
 namespace penumbra::testing {
 
@@ -18,6 +20,14 @@ Scene procedural_scene(const std::string& builtin, ivec3 size, int image_size) {
   RenderSettings r;
   r.width = image_size;
   r.height = image_size;
+  scene.set_render(r);
+  return scene;
+}
+
+Scene repository_scene(const std::string& relative_path, int image_size) {
+  Scene scene = load_scene(std::filesystem::path(PENUMBRA_SOURCE_DIR) / relative_path);
+  RenderSettings r = scene.render();
+  r.width = r.height = image_size;
   scene.set_render(r);
   return scene;
 }

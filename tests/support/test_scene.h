@@ -28,6 +28,10 @@ Scene with_floor(Scene scene);
 // developer can look at what a test rendered.
 void save_test_image(const Image& image, const std::string& name);
 
+// A scene file of the repository (path relative to its root, e.g.
+// "scenes/plate-over-plane.json"), rendered at image_size^2.
+Scene repository_scene(const std::string& relative_path, int image_size);
+
 // Renders with a registered technique and parameters (name=value pairs).
 Image render_with(const Scene& scene, const std::string& technique, const ParameterSettings& params = {});
 

@@ -196,10 +196,7 @@ TEST(Convolution, LightsAddUp) {
 // mean dE 1.20 (convolution) vs 2.12 (shadow-rays); at 96^2, 0.97 vs 2.02. The
 // bound 1.8 leaves room for the reference noise (about 0.3 dE at 96^2).
 TEST(Convolution, SoftShadowsApproachPathtraceOnPlateOverPlane) {
-  Scene scene = load_scene(std::filesystem::path(PENUMBRA_SOURCE_DIR) / "scenes/plate-over-plane.json");
-  RenderSettings r = scene.render();
-  r.width = r.height = 32;
-  scene.set_render(r);
+  Scene scene = testing::repository_scene("scenes/plate-over-plane.json", 32);
   const Image reference = render_with(scene, "pathtrace", {{"spp", 256.0}, {"progress", false}});
   const ParameterSettings params{{"slab_distance", 0.5}, {"optimal_distance", 20.0}};
   const double conv = delta_e_stats(render_with(scene, "convolution", params), reference).mean;

@@ -33,10 +33,7 @@ namespace {
 using testing::render_with;
 
 TEST(Convolution, Fig14AnisotropicLightsApproachPathtrace) {
-  Scene scene = load_scene(std::filesystem::path(PENUMBRA_SOURCE_DIR) / "scenes/fig14-plate-over-plane.json");
-  RenderSettings r = scene.render();
-  r.width = r.height = 32;
-  scene.set_render(r);
+  Scene scene = testing::repository_scene("scenes/fig14-plate-over-plane.json", 32);
   const Image reference = render_with(scene, "pathtrace", {{"spp", 1024.0}, {"progress", false}});
   const ParameterSettings params{{"slab_distance", 0.5}, {"optimal_distance", 20.0}};
   const Image conv_image = render_with(scene, "convolution", params);
