@@ -6,9 +6,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <limits>
 #include <string>
+#include <unordered_map>
 
 // The coverage decision relies on every edge function being evaluated by the
 // same IEEE operations from both triangles of an edge; this file is built with
@@ -92,6 +94,7 @@ struct SetupTriangle {
   glm::dvec2 piece[2][3];
   const CameraVertex* vertex[3] = {nullptr, nullptr, nullptr};
   const vec3* position[3] = {nullptr, nullptr, nullptr};  // world
+  const vec3* corner_normals = nullptr;                    // 3 shading normals, or null: flat
   std::uint16_t object = 0;
 };
 
@@ -117,6 +120,7 @@ TriangleAttributes attributes(const SetupTriangle& s) {
 
 struct MeshTables {
   const std::vector<const TriangleMesh*>* meshes = nullptr;
+  const std::vector<const std::vector<vec3>*>* corner_normals = nullptr;  // empty: all flat
   std::vector<std::size_t> triangle_begin;  // per mesh, + total
   std::vector<std::size_t> vertex_begin;
 };
@@ -160,6 +164,9 @@ SetupTriangle setup_triangle(std::size_t t, const BuildContext& ctx) {
   s.position[1] = &mesh.positions[idx.y];
   s.position[2] = &mesh.positions[idx.z];
   s.object = std::uint16_t(m);
+  if (!tables.corner_normals->empty() && (*tables.corner_normals)[m] != nullptr) {
+    s.corner_normals = (*tables.corner_normals)[m]->data() + 3 * (t - tables.triangle_begin[m]);
+  }
 
   const int inside = int(v[0]->cam.z >= ctx.near) + int(v[1]->cam.z >= ctx.near) + int(v[2]->cam.z >= ctx.near);
   if (inside == 0) return s;
@@ -205,6 +212,31 @@ PixelRect pixel_rect(const glm::dvec2* p, int width, int height) {
   return PixelRect{first(lo_x, width), first(lo_y, height), last(hi_x, width), last(hi_y, height)};
 }
 
+// The shading normal at camera-space point c of the triangle: its corner
+// normals weighted by c's barycentric coordinates (clamped to the triangle,
+// which c leaves only by rounding), renormalised; the geometric normal where
+// that fails or points to the inner side.
+vec3 shading_normal(const SetupTriangle& s, const TriangleAttributes& a, dvec3 c) {
+  const dvec3 &c0 = s.vertex[0]->cam, &c1 = s.vertex[1]->cam, &c2 = s.vertex[2]->cam;
+  const dvec3& n = a.plane_normal;  // cross(c1 - c0, c2 - c0)
+  const double nn = glm::dot(n, n);
+  if (!(nn > 0.0)) return a.world_normal;
+  const dvec3 d = c - c0;
+  double b1 = std::max(glm::dot(glm::cross(d, c2 - c0), n) / nn, 0.0);
+  double b2 = std::max(glm::dot(glm::cross(c1 - c0, d), n) / nn, 0.0);
+  double b0 = std::max(1.0 - b1 - b2, 0.0);
+  const double sum = b0 + b1 + b2;
+  b0 /= sum;
+  b1 /= sum;
+  b2 /= sum;
+  const dvec3 interpolated = b0 * dvec3(s.corner_normals[0]) + b1 * dvec3(s.corner_normals[1]) +
+                             b2 * dvec3(s.corner_normals[2]);
+  const double length = glm::length(interpolated);
+  if (!(length > 0.0) || !std::isfinite(length)) return a.world_normal;
+  const vec3 result(interpolated / length);
+  return glm::dot(result, a.world_normal) > 0.0f ? result : a.world_normal;
+}
+
 // Rasterises triangle t's rows inside [row0, row1]. Counting (fragments ==
 // nullptr) adds to `counts`; filling writes at offsets[i] + counts[i] and
 // advances counts[i], never past offsets[i + 1]. One function serves both
@@ -247,7 +279,12 @@ void raster_triangle(std::size_t t, const BuildContext& ctx, int row0, int row1,
                                  : a.plane_offset / (n.x * uv.x + n.y * uv.y + n.z);
         // Counter-clockwise from outside is clockwise in y-down pixel space:
         // a front face has its inside at negative edge values.
-        fragments[slot] = LdiFragment{float(depth), a.world_normal, s.object, s0 < 0};
+        vec3 normal = a.world_normal;
+        if (s.corner_normals != nullptr) {
+          const dvec3 hit = ctx.projector.orthographic ? dvec3(uv.x, uv.y, depth) : depth * dvec3(uv.x, uv.y, 1.0);
+          normal = shading_normal(s, a, hit);
+        }
+        fragments[slot] = LdiFragment{float(depth), normal, s.object, s0 < 0};
       }
     }
   }
@@ -290,6 +327,12 @@ void sort_pixel(LdiFragment* f, std::uint32_t n) {
 
 void LayeredDepthImage::build(const std::vector<const TriangleMesh*>& meshes_world, const CameraView& camera,
                               int width, int height) {
+  build(meshes_world, {}, camera, width, height);
+}
+
+void LayeredDepthImage::build(const std::vector<const TriangleMesh*>& meshes_world,
+                              const std::vector<const std::vector<vec3>*>& corner_normals, const CameraView& camera,
+                              int width, int height) {
   if (width <= 0 || height <= 0) {
     throw InvalidArgument("width", "layered depth image size must be positive, got " + std::to_string(width) +
                                        " x " + std::to_string(height));
@@ -305,6 +348,12 @@ void LayeredDepthImage::build(const std::vector<const TriangleMesh*>& meshes_wor
 
   MeshTables tables;
   tables.meshes = &meshes_world;
+  tables.corner_normals = &corner_normals;
+  if (!corner_normals.empty() && corner_normals.size() != meshes_world.size()) {
+    throw InvalidArgument("corner_normals", "must be empty or have one entry per mesh (" +
+                                                std::to_string(meshes_world.size()) + "), got " +
+                                                std::to_string(corner_normals.size()));
+  }
   tables.triangle_begin.assign(1, 0);
   tables.vertex_begin.assign(1, 0);
   for (std::size_t m = 0; m < meshes_world.size(); ++m) {
@@ -318,6 +367,12 @@ void LayeredDepthImage::build(const std::vector<const TriangleMesh*>& meshes_wor
         throw InvalidArgument(name, "triangle " + std::to_string(t) + " has a vertex index out of range (" +
                                         std::to_string(vertex_count) + " positions)");
       }
+    }
+    if (!corner_normals.empty() && corner_normals[m] != nullptr &&
+        corner_normals[m]->size() != 3 * mesh->triangles.size()) {
+      throw InvalidArgument("corner_normals[" + std::to_string(m) + "]",
+                            "must hold 3 normals per triangle (" + std::to_string(3 * mesh->triangles.size()) +
+                                "), got " + std::to_string(corner_normals[m]->size()));
     }
     tables.triangle_begin.push_back(tables.triangle_begin.back() + mesh->triangles.size());
     tables.vertex_begin.push_back(tables.vertex_begin.back() + vertex_count);
@@ -454,6 +509,64 @@ LdiView LayeredDepthImage::view() const {
 std::uint64_t LayeredDepthImage::bytes() const {
   return std::uint64_t(offsets_.size()) * sizeof(std::uint32_t) +
          std::uint64_t(fragments_.size()) * sizeof(LdiFragment);
+}
+
+std::vector<vec3> smooth_corner_normals(const TriangleMesh& mesh, float crease_deg) {
+  const std::size_t vertex_count = mesh.positions.size(), triangle_count = mesh.triangles.size();
+  // Weld exactly equal positions (+0.0f turns -0 into +0 so they hash alike).
+  std::vector<std::uint32_t> weld(vertex_count);
+  {
+    std::unordered_map<std::uint64_t, std::uint32_t> first_at;
+    first_at.reserve(vertex_count);
+    for (std::size_t i = 0; i < vertex_count; ++i) {
+      const vec3 p = mesh.positions[i] + vec3(0.0f);
+      std::uint32_t bits[3];
+      std::memcpy(bits, &p, sizeof(bits));
+      std::uint64_t h = 1469598103934665603ULL;
+      for (std::uint32_t b : bits) h = (h ^ b) * 1099511628211ULL;
+      // A hash collision of different positions keeps its own index.
+      auto [it, inserted] = first_at.try_emplace(h, std::uint32_t(i));
+      weld[i] = (!inserted && mesh.positions[it->second] == mesh.positions[i]) ? it->second : std::uint32_t(i);
+    }
+  }
+  // Per triangle: cross product (twice the area along the normal) and unit normal.
+  std::vector<dvec3> weighted(triangle_count), unit(triangle_count, dvec3(0.0));
+  for (std::size_t t = 0; t < triangle_count; ++t) {
+    const glm::uvec3 idx = mesh.triangles[t];
+    const dvec3 p0(mesh.positions[idx.x]), p1(mesh.positions[idx.y]), p2(mesh.positions[idx.z]);
+    weighted[t] = glm::cross(p1 - p0, p2 - p0);
+    const double length = glm::length(weighted[t]);
+    if (length > 0.0 && std::isfinite(length)) unit[t] = weighted[t] / length;
+    else weighted[t] = dvec3(0.0);
+  }
+  // Triangles around each welded vertex (CSR).
+  std::vector<std::uint32_t> begin(vertex_count + 1, 0), around(3 * triangle_count);
+  for (const glm::uvec3& idx : mesh.triangles) {
+    for (int k = 0; k < 3; ++k) ++begin[weld[idx[k]] + 1];
+  }
+  for (std::size_t v = 0; v < vertex_count; ++v) begin[v + 1] += begin[v];
+  {
+    std::vector<std::uint32_t> fill(begin.begin(), begin.end() - 1);
+    for (std::size_t t = 0; t < triangle_count; ++t) {
+      for (int k = 0; k < 3; ++k) around[fill[weld[mesh.triangles[t][k]]]++] = std::uint32_t(t);
+    }
+  }
+  const double min_cos = std::cos(double(crease_deg) * double(kPi) / 180.0);
+  std::vector<vec3> normals(3 * triangle_count, vec3(0.0f));
+  for (std::size_t t = 0; t < triangle_count; ++t) {
+    if (unit[t] == dvec3(0.0)) continue;
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t v = weld[mesh.triangles[t][k]];
+      dvec3 sum(0.0);
+      for (std::uint32_t j = begin[v]; j < begin[v + 1]; ++j) {
+        const std::uint32_t u = around[j];
+        if (glm::dot(unit[t], unit[u]) >= min_cos) sum += weighted[u];
+      }
+      const double length = glm::length(sum);
+      normals[3 * t + std::size_t(k)] = length > 0.0 ? vec3(sum / length) : vec3(unit[t]);
+    }
+  }
+  return normals;
 }
 
 }  // namespace penumbra

@@ -22,6 +22,10 @@
 //   - triangles are clipped against a near plane just in front of the eye, so
 //     a camera inside a mesh sees the surfaces in front of it (its pixels then
 //     start inside: the first crossing of that mesh is a leaving one).
+// A fragment's normal is the triangle's flat (geometric) normal, or, when the
+// caller gives per-corner shading normals (e.g. from smooth_corner_normals),
+// their barycentric interpolation at the hit point: smooth highlights on a
+// tessellated surface. Coverage, depth and `entering` never use them.
 // The layout is compressed rows (CSR): offsets[pixel] .. offsets[pixel + 1]
 // index the pixel's fragments. Building is parallel over bands of rows: a
 // counting pass, a prefix sum, and a filling pass that also sorts each pixel.
@@ -37,7 +41,13 @@ namespace penumbra {
 
 struct LdiFragment {
   float depth;           // along the camera's forward axis f: dot(hit - eye, f)
-  vec3 normal;           // world-space unit geometric normal, outward (counter-clockwise winding)
+  // World-space unit normal, outward. Without shading normals: the
+  // triangle's geometric normal (counter-clockwise winding). With them: the
+  // shading normal, the renormalised barycentric interpolation of the
+  // triangle's three corner normals at the hit point; where that is not on
+  // the outer side of the triangle (dot with the geometric normal <= 0) or
+  // has no length, the geometric normal instead.
+  vec3 normal;
   std::uint16_t object;  // index of the mesh in the list given to build
   // The ray goes into the mesh here: dot(normal, ray direction) < 0. It is
   // taken from the triangle's winding in pixel space, the same test that
@@ -72,6 +82,13 @@ class LayeredDepthImage {
   // OutOfMemoryBudget before allocating more than the budget allows.
   // Rebuilding reuses the storage of the previous build.
   void build(const std::vector<const TriangleMesh*>& meshes_world, const CameraView& camera, int width, int height);
+  // The same with shading normals: corner_normals is empty (flat normals
+  // everywhere) or has one entry per mesh, null (that mesh flat) or holding
+  // 3 world-space normals per triangle (corner k of triangle t at 3 t + k).
+  // Throws InvalidArgument for any other size.
+  void build(const std::vector<const TriangleMesh*>& meshes_world,
+             const std::vector<const std::vector<vec3>*>& corner_normals, const CameraView& camera, int width,
+             int height);
 
   LdiView view() const;
   int width() const { return width_; }
@@ -84,5 +101,17 @@ class LayeredDepthImage {
   std::vector<std::uint32_t> offsets_;
   std::vector<LdiFragment> fragments_;
 };
+
+// Smooth shading normals of a mesh, 3 per triangle (corner k of triangle t at
+// 3 t + k), for LayeredDepthImage::build. A corner's normal is the
+// area-weighted average of the geometric normals of the triangles around its
+// vertex whose normals are within `crease_deg` of its own triangle's: a
+// curved tessellated surface gets smooth normals, a sharp edge (a box's 90
+// degrees with the default 60) stays sharp, so a flat face keeps its exact
+// face normal. Vertices at exactly equal positions are one vertex (welded,
+// as TriangleMesh::validate's closedness test does), so seams where a file
+// splits vertices do not show. A triangle without area gets zero normals
+// (the LDI then uses its geometric normal). Indices must be in range.
+std::vector<vec3> smooth_corner_normals(const TriangleMesh& mesh, float crease_deg = 60.0f);
 
 }  // namespace penumbra

@@ -26,6 +26,7 @@ void MeshResources::update(const Scene& scene) {
   unit_length_ = unit;
   const std::vector<MeshObject>& meshes = scene.meshes();
   world_.assign(meshes.size(), TriangleMesh{});
+  corner_normals_.assign(meshes.size(), {});
   details_.clear();
   tfs_.clear();
   objects_.clear();
@@ -42,6 +43,9 @@ void MeshResources::update(const Scene& scene) {
     }
     w.positions.reserve(m.mesh->positions.size());
     for (const vec3& p : m.mesh->positions) w.positions.emplace_back(to_world * vec4(p, 1.0f));
+    // From the world positions and the (possibly swapped) winding: outward
+    // in world space, no normal matrix needed.
+    corner_normals_[i] = smooth_corner_normals(w);
     const Box3 b = w.bounds();
     bounds_.lower = glm::min(bounds_.lower, b.lower);
     bounds_.upper = glm::max(bounds_.upper, b.upper);
@@ -64,8 +68,10 @@ void MeshResources::update(const Scene& scene) {
 
 void MeshResources::build_ldi(const CameraView& camera, int width, int height) {
   std::vector<const TriangleMesh*> meshes;
+  std::vector<const std::vector<vec3>*> normals;
   for (const TriangleMesh& m : world_) meshes.push_back(&m);
-  ldi_.build(meshes, camera, width, height);
+  for (const std::vector<vec3>& n : corner_normals_) normals.push_back(&n);
+  ldi_.build(meshes, normals, camera, width, height);
 }
 
 MeshesView MeshResources::view() const { return MeshesView{objects_.data(), int(objects_.size()), ldi_.view()}; }
@@ -73,6 +79,7 @@ MeshesView MeshResources::view() const { return MeshesView{objects_.data(), int(
 std::uint64_t MeshResources::bytes() const {
   std::uint64_t n = ldi_.bytes();
   for (const TriangleMesh& m : world_) n += m.positions.size() * sizeof(vec3) + m.triangles.size() * sizeof(glm::uvec3);
+  for (const std::vector<vec3>& c : corner_normals_) n += c.size() * sizeof(vec3);
   return n;
 }
 

@@ -1,8 +1,9 @@
 #pragma once
 // What the slab renderer needs of the scene's meshes: the meshes moved to
-// world space, each mesh's detail function and material TF as plain views
-// (rebuilt when the meshes change), and the layered depth image (rebuilt per
-// frame: it depends on the camera).
+// world space with their smooth shading normals (smooth_corner_normals), each
+// mesh's detail function and material TF as plain views (rebuilt when the
+// meshes change), and the layered depth image (rebuilt per frame: it depends
+// on the camera).
 #include "penumbra/scene/detail_view.h"
 #include "penumbra/scene/scene.h"
 #include "penumbra/techniques/convolution/layered_depth_image.h"
@@ -43,6 +44,7 @@ class MeshResources {
   std::uint64_t version_ = 0;
   float unit_length_ = 0.0f;
   std::vector<TriangleMesh> world_;
+  std::vector<std::vector<vec3>> corner_normals_;  // per world mesh: smooth shading normals for the LDI
   std::vector<std::unique_ptr<DetailResources>> details_;
   std::vector<TransferFunctionTable> tfs_;
   std::vector<MeshMaterialView> objects_;
