@@ -20,6 +20,7 @@
 #   SIZE=768                    image side
 #   SCENES="engine knot"        which scenes
 #   GAUSSIAN=1                  include the 19 x 19 Gaussian kernel
+#   KERNELS="gaussian:19"       instead: this list of kernel:samples
 #   SIGMA2=0.01                 light variance per axis
 #   OUT=dir                     raw results (default build/bench-convolution)
 # The engine scene needs ../shared/data/engine_256x256x128_uint8.nhdr.
@@ -50,6 +51,7 @@ PY
 
 kernels="ellipse:2 ellipse:3 poisson:8 poisson:16"
 [ "$gaussian" = 1 ] && kernels="$kernels gaussian:19"
+kernels=${KERNELS:-$kernels}
 for name in $scenes; do
   case $name in
     engine) one=$root/scenes/engine-directional.json slab=1.0 ;;
