@@ -43,7 +43,9 @@ TEST(Microfacet, AlbedoConservesEnergy) {
       const double albedo =
           hemisphere_integral([&](vec3 l) { return microfacet_specular(n, v, l, 1.0f, alpha) / kPi; }, 300);
       EXPECT_LE(albedo, 1.0) << alpha << " " << view_deg;
-      if (alpha <= 0.1f && view_deg < 60.0f) EXPECT_GT(albedo, 0.9) << view_deg;
+      if (alpha <= 0.1f && view_deg < 60.0f) {
+        EXPECT_GT(albedo, 0.9) << view_deg;
+      }
     }
   }
   const vec3 v(0.0f, 0.0f, 1.0f);

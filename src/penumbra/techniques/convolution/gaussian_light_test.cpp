@@ -46,7 +46,7 @@ glm::dvec2 slope(dvec3 d, const CameraView& cam) {
 TEST(GaussianLight, AlongTheViewAxisTheCovarianceIsTheRotatedDiagonal) {
   // The default camera (forward -z, right +x, up +y) and an arbitrary one
   // whose (right, up) is the light frame; c = -forward either way.
-  for (const vec3 forward : {vec3(0.0f, 0.0f, -1.0f), vec3(0.3f, -0.5f, -0.8f)}) {
+  for (const vec3& forward : {vec3(0.0f, 0.0f, -1.0f), vec3(0.3f, -0.5f, -0.8f)}) {
     const CameraView cam = camera_along(forward);
     for (const float rotation : {0.0f, 30.0f, -70.0f, 125.0f}) {
       const Light l = anisotropic_light(cam.forward, 4.0f, 15.0f, rotation);

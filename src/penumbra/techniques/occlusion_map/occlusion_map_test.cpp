@@ -255,6 +255,21 @@ Scene lit_balls(int image_size = 48) {
 
 // AO only darkens (it scales light, never adds), in iso and DVR mode; and the
 // iso image shows both the surface and the opaque floor.
+// The soft-shadow cone is round: an anisotropic Gaussian light gets the cone
+// of equal variance (RMS of its spreads); an isotropic one its own spread.
+TEST(OcclusionMapShadows, AnisotropicGaussianLightsTakeTheRmsSpread) {
+  OcclusionQueries<4> q;
+  Light light;
+  light.type = LightType::Distant;
+  light.profile = LightProfile::Gaussian;
+  light.angle_deg = 10.0f;
+  EXPECT_FLOAT_EQ(q.light_spread(light, vec3(0.0f)), std::tan(glm::radians(10.0f)));
+  light.angle_deg = 0.0f;
+  light.angle_y_deg = 20.0f;
+  const float t = std::tan(glm::radians(20.0f));
+  EXPECT_NEAR(q.light_spread(light, vec3(0.0f)), t / std::sqrt(2.0f), 1e-6f);
+}
+
 TEST(OcclusionMapRender, AmbientOcclusionOnlyDarkens) {
   const Scene scene = lit_balls();
   for (const char* mode : {"iso", "dvr"}) {

@@ -63,10 +63,17 @@ template <int K> struct OcclusionQueries {
     return 1.0f - (ao_mean ? sum / float(levels) : worst);
   }
 
-  // tan of the angular radius of a light seen from p.
+  // tan of the angular radius of a light seen from p. The cone query is
+  // round: an anisotropic Gaussian light takes the radius of equal variance,
+  // the root mean square of its two spreads.
   PENUMBRA_HD float light_spread(const Light& light, vec3 p) const {
     switch (light.type) {
-      case LightType::Distant: return glm::tan(glm::radians(glm::min(light.angle_deg, 89.0f)));
+      case LightType::Distant: {
+        const float x = glm::min(light.angle_deg, 89.0f), y = glm::min(light.spread_y_deg(), 89.0f);
+        if (x == y) return glm::tan(glm::radians(x));
+        const vec2 t(glm::tan(glm::radians(x)), glm::tan(glm::radians(y)));
+        return glm::sqrt(0.5f * glm::dot(t, t));
+      }
       case LightType::Sphere:
       case LightType::Disk: {
         const float d = glm::length(light.position - p);
