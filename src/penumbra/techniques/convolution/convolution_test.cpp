@@ -235,5 +235,40 @@ TEST(Convolution, PreintegrationKeepsThinFeaturesWithFewSlabs) {
   EXPECT_LT(e_pre, 0.6 * e_plain);
 }
 
+// A homogeneous medium seen and lit head-on scatters
+//   L = int_0^D sigma e^{-2 sigma x} dx = (1 - e^{-2 sigma D}) / 2
+// (isotropic phase, albedo 1, light of radiance 1). With 1.5 optical depths
+// per slab the midpoint rule (light attenuated by e^{-a/2} at each sample)
+// gives 0.385 instead of 0.5; the segment integral is exact at any
+// thickness (segment_light_factor in slab_renderer.cpp).
+TEST(Convolution, OpticallyThickSlabsScatterExactly) {
+  Scene scene = procedural_scene("slab", ivec3(16), 8);
+  const float alpha = 1.0f - std::exp(-3.0f);  // sigma = 3 per world unit, 1.5 per slab of 0.5
+  TransferFunction tf({{0.0f, vec3(1.0f), alpha}, {1.0f, vec3(1.0f), alpha}});
+  tf.set_range(vec2(0.0f, 1.0f));
+  tf.set_unit_length(1.0f);
+  scene.set_transfer_function(tf);
+  Camera cam;
+  cam.projection = Projection::Orthographic;
+  cam.eye = vec3(0.0f, 0.0f, 50.0f);
+  cam.target = vec3(0.0f);
+  cam.up = vec3(0.0f, 1.0f, 0.0f);
+  cam.ortho_height = 8.0f;
+  scene.set_camera(cam);
+  Light light;
+  light.direction = vec3(0.0f, 0.0f, -1.0f);
+  scene.set_lights({light});
+  Material m;
+  m.ambient = 0.0f;
+  scene.set_material(m);
+  RenderSettings r = scene.render();
+  r.ert_threshold = 1.0f;
+  scene.set_render(r);
+  const Image image = render_with(scene, "convolution");
+  const float expected = 0.5f * (1.0f - std::exp(-2.0f * 3.0f * 15.0f));
+  std::printf("thick slabs: %.4f (exact %.4f)\n", image.at(4, 4).r, expected);
+  EXPECT_NEAR(image.at(4, 4).r, expected, 0.01f);
+}
+
 }  // namespace
 }  // namespace penumbra

@@ -66,6 +66,23 @@ PENUMBRA_HD inline vec4 mesh_medium(const MeshesView& meshes, std::uint32_t obje
   return sigma > 0.0f ? vec4(weighted / sigma, sigma) : vec4(0.0f);
 }
 
+// The light a segment scatters toward the viewer, relative to the midpoint
+// sample's alpha * incoming light: the segment has optical depth a along the
+// viewing ray and its medium takes b of the light across it, in proportion to
+// depth (the slab model: light enters through the slab's front face). The
+// in-scattered fraction is int_0^1 a e^{-a u} e^{-b u} du
+//   = a / (a + b) (1 - e^{-(a + b)}),
+// so the factor is that over 1 - e^{-a}. It is exact for a homogeneous slab
+// whatever its optical thickness (the midpoint rule e^{-b/2} is its limit for
+// thin segments, and bands a surface slabs cut obliquely when a is large).
+PENUMBRA_HD inline float segment_light_factor(float a, float b) {
+  if (b <= 0.0f) return 1.0f;
+  const float ab = a + b;
+  const float along = ab > 1e-4f ? -std::expm1(-ab) / ab : 1.0f - 0.5f * ab;   // (1 - e^{-(a+b)}) / (a + b)
+  const float alpha = a > 1e-4f ? -std::expm1(-a) / a : 1.0f - 0.5f * a;       // (1 - e^{-a}) / a
+  return along / alpha;
+}
+
 }  // namespace
 
 void SlabRenderer::prepare(const Scene& scene, const SlabSettings& settings) {
@@ -296,9 +313,11 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
               auto composite = [&](vec4 sample, const float* half_depth, vec3 pos, vec3 index, float v,
                                    const ScatteringLighting<BufferVisibility>& lighting) {
                 if (!(sample.a > 0.0f)) return;
+                const float view_depth = -std::log1p(-glm::min(sample.a, 1.0f - 1e-7f));
                 for (std::size_t s = 0; s < slot_of.size(); ++s) {
                   if (slot_of[s] < 0) continue;
-                  vis[s] = half_depth ? incoming[s] * exp_nonpositive(-half_depth[slot_of[s]]) : incoming[s];
+                  vis[s] = half_depth ? incoming[s] * segment_light_factor(view_depth, 2.0f * half_depth[slot_of[s]])
+                                      : incoming[s];
                 }
                 ScatteringLighting<BufferVisibility> lit = lighting;
                 lit.visibility.values = vis;
