@@ -63,12 +63,12 @@ TEST(Convolution, Fig14AnisotropicLightsApproachPathtrace) {
   std::printf("fig14 (32^2): mean dE convolution %.2f, shadow-rays %.2f; on the %d pixels the blue light's "
               "orientation changes: %.2f at -70 deg, %.2f mirrored to +70 deg\n",
               conv, rays, count, right_sum / count, wrong_sum / count);
-  // Observed 1.32 (1.03 at 128^2 against 16384 spp); much of it is the
+  // Observed 1.27 (0.97 at 128^2 against 16384 spp); much of it is the
   // plate's own slab banding, common to every light setting. 1.7 leaves ~30%
   // for floating-point and noise differences across platforms.
   EXPECT_LT(conv, 1.7);
   EXPECT_LT(conv, rays);
-  // Observed 1.26 against 2.33 (ratio 0.54); 0.7 still fails a mirrored or
+  // Observed 1.30 against 2.35 (ratio 0.55); 0.7 still fails a mirrored or
   // ignored rotation, which gives a ratio near or above 1.
   EXPECT_LT(right_sum, 0.7 * wrong_sum);
 }
