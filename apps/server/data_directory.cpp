@@ -1,5 +1,6 @@
 #include "server/data_directory.h"
 
+#include "penumbra/io/text_parsing.h"
 #include "penumbra/io/volume_reader.h"
 #include "server/http_error.h"
 
@@ -19,8 +20,7 @@ DataDirectory::DataDirectory(const fs::path& root) {
 }
 
 bool DataDirectory::is_volume_file_name(std::string_view name) {
-  std::string lower(name);
-  std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  const std::string lower = to_lower(name);
   for (const std::string& ext : supported_volume_extensions()) {
     if (lower.size() > ext.size() && lower.ends_with(ext)) return true;
   }
@@ -42,8 +42,7 @@ fs::path DataDirectory::resolve_volume(std::string_view relative, const std::str
 
 fs::path DataDirectory::resolve_mesh(std::string_view relative, const std::string& key) const {
   auto is_mesh = [](std::string_view name) {
-    std::string lower(name);
-    std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    const std::string lower = to_lower(name);
     return lower.size() > 4 && (lower.ends_with(".obj") || lower.ends_with(".ply"));
   };
   return resolve(relative, key, +is_mesh, "mesh");

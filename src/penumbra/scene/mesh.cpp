@@ -53,19 +53,25 @@ void TriangleMesh::validate(const std::string& name) const {
 // same position count as one (files often split vertices at UV or normal
 // seams; the rasteriser projects equal positions to equal points, so such a
 // mesh is closed for the parity test too).
-void TriangleMesh::check_closed(const std::string& name) const {
+std::vector<std::uint32_t> TriangleMesh::welded_indices() const {
   std::unordered_map<std::uint64_t, std::uint32_t> first_at;
   first_at.reserve(positions.size());
   std::vector<std::uint32_t> weld(positions.size());
   for (std::size_t i = 0; i < positions.size(); ++i) {
+    const vec3 p = positions[i] + vec3(0.0f);  // -0 becomes +0, so both hash alike
     std::uint32_t bits[3];
-    std::memcpy(bits, &positions[i], sizeof(bits));
-    std::uint64_t h = 1469598103934665603ULL;
+    std::memcpy(bits, &p, sizeof(bits));
+    std::uint64_t h = 1469598103934665603ULL;  // FNV-1a over the three floats' bits
     for (std::uint32_t b : bits) h = (h ^ b) * 1099511628211ULL;
-    // Collisions of different positions fall back to their own index.
+    // A hash collision of different positions keeps its own index.
     auto [it, inserted] = first_at.try_emplace(h, std::uint32_t(i));
     weld[i] = (!inserted && positions[it->second] == positions[i]) ? it->second : std::uint32_t(i);
   }
+  return weld;
+}
+
+void TriangleMesh::check_closed(const std::string& name) const {
+  const std::vector<std::uint32_t> weld = welded_indices();
   std::vector<std::pair<std::uint32_t, std::uint32_t>> forward, backward;
   forward.reserve(3 * triangles.size());
   backward.reserve(3 * triangles.size());

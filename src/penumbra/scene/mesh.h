@@ -35,6 +35,11 @@ struct TriangleMesh {
   // consistently wound (vertices at equal positions count as one).
   void validate(const std::string& name) const;
 
+  // For each vertex, the lowest index of a vertex at exactly the same position
+  // (-0 and +0 alike): files split vertices at UV or normal seams, and the
+  // surface is the same either way.
+  std::vector<std::uint32_t> welded_indices() const;
+
  private:
   void check_closed(const std::string& name) const;
 };

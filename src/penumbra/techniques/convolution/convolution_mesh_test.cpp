@@ -95,13 +95,19 @@ TEST(ConvolutionMeshes, NestedHomogeneousSpheresFollowBeerLambert) {
 }
 
 // The shadow of the sphere on a floor far below, with a tilted directional
-// light from behind the viewer. Each slab's re-sampling of the light buffer
-// may blur a hard shadow (the blur section 7 of the paper admits), but a blur
-// keeps both the shadow's centre and the light it removes: the floor misses lit * integral over the sphere's cross
-// section of (1 - exp(-sigma chord)), spread over an area 1 / cos(45 deg)
-// larger, and that missing light is centred where the light through the
-// sphere's centre meets the floor.
-TEST(ConvolutionMeshes, ShadowOnTheFloorRemovesTheBeerLambertLight) {
+// light from behind the viewer: the floor gets lit * exp(-sigma chord), the
+// chord of the sphere along the light ray back from each floor point (a hard
+// shadow: zero-variance lights read the buffers with Catmull-Rom, which adds
+// far less blur than bilinear reads). Checked in the core of the shadow (light
+// rays at most 0.5 R off the centre) and on the floor more than 3 pixels past
+// the rim. Between them lies the residual edge blur, about 3 floor pixels wide
+// after the ~100 slabs from the sphere to the floor. A blur of standard
+// deviation s changes a smooth profile T by about s^2 T'' / 2 (both axes):
+// for s ~ 1.3 px (2.6 units on the floor, 1.8 across the light along x) and
+// T'' = 0.0027 per unit^2 at 0.5 R, that is 0.013, hence the bound 0.015.
+// Observed: 0.012 in the core, 0 outside; bilinear reads (s ~ 3 px) put the
+// centre alone 0.037 off.
+TEST(ConvolutionMeshes, ShadowOnTheFloorFollowsBeerLambert) {
   constexpr int kImage = 64;
   constexpr float kHeight = 128.0f;
   constexpr float kRadius = 12.0f;
@@ -114,31 +120,30 @@ TEST(ConvolutionMeshes, ShadowOnTheFloorRemovesTheBeerLambertLight) {
   const Image image = render_with(scene, "convolution");
   testing::save_test_image(image, "conv_mesh_shadow.png");
   const float lit = 0.8f * std::sqrt(0.5f);  // colour * cos(45 deg) * L
-  const float pixel_area = (kHeight / kImage) * (kHeight / kImage);
-  double missing = 0.0, moment_x = 0.0, moment_y = 0.0;
+  float worst_inside = 0.0f, worst_outside = 0.0f;
+  int inside = 0, outside = 0;
   for (int y = 0; y < kImage; ++y) {
     for (int x = 0; x < kImage; ++x) {
       const vec2 p = pixel_world(x, y, kImage, kHeight);
-      if (p.x < 1.1f * kRadius) continue;  // the sphere itself and the floor left of it
-      const double m = (lit - image.at(x, y).r) * pixel_area;
-      missing += m;
-      moment_x += m * p.x;
-      moment_y += m * p.y;
+      if (glm::length(p) < 1.2f * kRadius) continue;  // the sphere itself hides the floor
+      const vec3 floor(p, -40.0f);
+      const float off_axis = glm::length(glm::cross(floor, light.direction));  // distance of the light ray from the centre
+      const float expected = lit * std::exp(-kSigma * chord(kRadius, vec2(off_axis, 0.0f)));
+      const float error = std::abs(image.at(x, y).r - expected);
+      if (off_axis < 0.5f * kRadius) {
+        worst_inside = std::max(worst_inside, error);
+        ++inside;
+      } else if (off_axis > kRadius + 3.0f * kHeight / kImage) {
+        worst_outside = std::max(worst_outside, error);
+        ++outside;
+      }
     }
   }
-  // 2 pi int_0^R (1 - exp(-2 sigma u)) u du over the cross section, / cos 45.
-  const double s = kSigma, R = kRadius;
-  const double cross = 2.0 * kPi * (R * R / 2.0 - (1.0 - std::exp(-2.0 * s * R) * (1.0 + 2.0 * s * R)) / (4.0 * s * s));
-  const double expected = lit * cross * std::sqrt(2.0);
-  std::printf("shadow: missing light %.1f (expected %.1f), centre (%.2f, %.2f)\n", missing, expected,
-              moment_x / missing, moment_y / missing);
-  // The floor far from the shadow is lit fully.
-  EXPECT_NEAR(image.at(kImage - 2, 2).r, lit, 0.005f);
-  // 3%: the pixel sum of a shadow 17 units across on 2-unit pixels, and the
-  // blur's tail that reaches under the sphere's silhouette.
-  EXPECT_NEAR(missing, expected, 0.03 * expected);
-  EXPECT_NEAR(moment_x / missing, 40.0, 1.0);  // the light through (0, 0, 0) meets z = -40 at x = 40
-  EXPECT_NEAR(moment_y / missing, 0.0, 0.5);
+  std::printf("shadow: %d pixels inside, worst %.4f; %d outside, worst %.4f\n", inside, worst_inside, outside,
+              worst_outside);
+  EXPECT_GT(inside, 20);
+  EXPECT_LT(worst_inside, 0.015f);
+  EXPECT_LT(worst_outside, 0.005f);
 }
 
 // A perspective camera inside a sphere sees its medium on every pixel, up to

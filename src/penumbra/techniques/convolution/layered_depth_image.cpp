@@ -6,11 +6,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <functional>
 #include <limits>
 #include <string>
-#include <unordered_map>
 
 // The coverage decision relies on every edge function being evaluated by the
 // same IEEE operations from both triangles of an edge; this file is built with
@@ -513,22 +511,7 @@ std::uint64_t LayeredDepthImage::bytes() const {
 
 std::vector<vec3> smooth_corner_normals(const TriangleMesh& mesh, float crease_deg) {
   const std::size_t vertex_count = mesh.positions.size(), triangle_count = mesh.triangles.size();
-  // Weld exactly equal positions (+0.0f turns -0 into +0 so they hash alike).
-  std::vector<std::uint32_t> weld(vertex_count);
-  {
-    std::unordered_map<std::uint64_t, std::uint32_t> first_at;
-    first_at.reserve(vertex_count);
-    for (std::size_t i = 0; i < vertex_count; ++i) {
-      const vec3 p = mesh.positions[i] + vec3(0.0f);
-      std::uint32_t bits[3];
-      std::memcpy(bits, &p, sizeof(bits));
-      std::uint64_t h = 1469598103934665603ULL;
-      for (std::uint32_t b : bits) h = (h ^ b) * 1099511628211ULL;
-      // A hash collision of different positions keeps its own index.
-      auto [it, inserted] = first_at.try_emplace(h, std::uint32_t(i));
-      weld[i] = (!inserted && mesh.positions[it->second] == mesh.positions[i]) ? it->second : std::uint32_t(i);
-    }
-  }
+  const std::vector<std::uint32_t> weld = mesh.welded_indices();
   // Per triangle: cross product (twice the area along the normal) and unit normal.
   std::vector<dvec3> weighted(triangle_count), unit(triangle_count, dvec3(0.0));
   for (std::size_t t = 0; t < triangle_count; ++t) {
