@@ -24,6 +24,7 @@ class Convolution final : public Technique {
   void render(const Scene& scene, Image& image, RenderStats* stats) override { renderer_.render(scene, image, stats); }
 
   std::uint64_t aux_bytes() const override { return renderer_.aux_bytes(); }
+  std::uint64_t rebuilds() const override { return std::uint64_t(renderer_.rebuilds()); }
 
  private:
   SlabRenderer renderer_;

@@ -23,11 +23,13 @@
 //   preintegrated       preintegrated compositing of the volume (Fig. 19)
 // Passes
 //   prepare: the shared resources and the meshes in world space with their
-//            detail functions and material TFs (mesh_resources.h); slabs,
-//            buffers and the layered depth image depend on the camera, so
-//            they are per frame (rebuilds() stays 0)
-//   render:  the layered depth image of the meshes (layered_depth_image.h),
-//            then the slab loop of slab_renderer.h
+//            detail functions and material TFs (mesh_resources.h), when the
+//            meshes change
+//   render:  the layered depth image of the meshes (layered_depth_image.h)
+//            when the camera, image size or meshes changed, then the slab
+//            loop of slab_renderer.h (slabs and light buffers depend on the
+//            camera and lights: every frame)
+// rebuilds() counts the mesh and layered-depth-image rebuilds.
 // Meshes: the scene's closed triangle meshes (scene/mesh.h) filled with
 // volumetric detail; this is the only technique that draws them.
 #include "penumbra/render/technique.h"

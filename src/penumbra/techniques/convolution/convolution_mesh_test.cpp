@@ -5,6 +5,7 @@
 #include "penumbra/analysis/image_metrics.h"
 #include "penumbra/render/microfacet.h"
 #include "penumbra/scene/mesh_shapes.h"
+#include "penumbra/techniques/registry.h"
 #include "test_scene.h"
 
 #include <gtest/gtest.h>
@@ -196,6 +197,36 @@ TEST(ConvolutionMeshes, HighlightSitsWhereTheNormalIsTheHalfVector) {
   const vec2 expected = 12.0f * vec2(h);  // the point of the sphere with normal h, seen from above
   const vec2 found = pixel_world(best_x, best_y, kImage, kHeight);
   EXPECT_LT(glm::length(found - expected), 1.5f) << found.x << ", " << found.y;
+}
+
+// The meshes and their layered depth image are rebuilt only when what they
+// depend on changes: not for a TF or light edit, yes for a camera move or a
+// mesh edit.
+TEST(ConvolutionMeshes, RebuildsOnlyForCameraOrMeshChanges) {
+  Scene scene = mesh_scene(16, 32.0f, 1.0f);
+  scene.set_meshes({homogeneous_sphere(12.0f, vec3(0.0f))});
+  auto technique = find_technique("convolution").create();
+  const ParameterValues params(find_technique("convolution").parameters);
+  Image image;
+  auto frame = [&] {
+    technique->prepare(scene, params);
+    technique->render(scene, image);
+    return technique->rebuilds();
+  };
+  const std::uint64_t first = frame();
+  EXPECT_EQ(first, 2u);  // the world mesh and the LDI
+  EXPECT_EQ(frame(), first);
+  Light light;
+  light.direction = glm::normalize(vec3(0.2f, 0.1f, -1.0f));
+  scene.set_lights({light});
+  scene.set_transfer_function(testing::step_tf(0.2f, vec3(1.0f), 0.5f));
+  EXPECT_EQ(frame(), first);
+  Camera cam = scene.camera();
+  cam.orbit(5.0f, 0.0f);
+  scene.set_camera(cam);
+  EXPECT_EQ(frame(), first + 1);  // the LDI only
+  scene.set_meshes({homogeneous_sphere(10.0f, vec3(0.0f))});
+  EXPECT_EQ(frame(), first + 3);  // the mesh, and the LDI again
 }
 
 }  // namespace

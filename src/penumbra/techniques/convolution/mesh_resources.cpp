@@ -23,6 +23,8 @@ void MeshResources::update(const Scene& scene) {
   const float unit = scene.unit_length();
   if (scene.versions().meshes == version_ && unit == unit_length_) return;
   version_ = scene.versions().meshes;
+  ldi_current_ = false;
+  if (!scene.meshes().empty()) ++mesh_builds_;
   unit_length_ = unit;
   const std::vector<MeshObject>& meshes = scene.meshes();
   world_.assign(meshes.size(), TriangleMesh{});
@@ -67,11 +69,20 @@ void MeshResources::update(const Scene& scene) {
 }
 
 void MeshResources::build_ldi(const CameraView& camera, int width, int height) {
+  const auto same_camera = [](const CameraView& a, const CameraView& b) {
+    return a.eye == b.eye && a.forward == b.forward && a.right == b.right && a.up == b.up &&
+           a.half_height == b.half_height && a.orthographic == b.orthographic;
+  };
+  if (ldi_current_ && ldi_.width() == width && ldi_.height() == height && same_camera(ldi_camera_, camera)) return;
+  ldi_current_ = false;  // stays false if the build throws
   std::vector<const TriangleMesh*> meshes;
   std::vector<const std::vector<vec3>*> normals;
   for (const TriangleMesh& m : world_) meshes.push_back(&m);
   for (const std::vector<vec3>& n : corner_normals_) normals.push_back(&n);
   ldi_.build(meshes, normals, camera, width, height);
+  ldi_camera_ = camera;
+  ldi_current_ = true;
+  ++ldi_builds_;
 }
 
 MeshesView MeshResources::view() const { return MeshesView{objects_.data(), int(objects_.size()), ldi_.view()}; }

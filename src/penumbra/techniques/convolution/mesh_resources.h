@@ -2,8 +2,8 @@
 // What the slab renderer needs of the scene's meshes: the meshes moved to
 // world space with their smooth shading normals (smooth_corner_normals), each
 // mesh's detail function and material TF as plain views (rebuilt when the
-// meshes change), and the layered depth image (rebuilt per frame: it depends
-// on the camera).
+// meshes change), and the layered depth image (rebuilt when the camera, the
+// image size or the meshes change).
 #include "penumbra/scene/detail_view.h"
 #include "penumbra/scene/scene.h"
 #include "penumbra/techniques/convolution/layered_depth_image.h"
@@ -33,7 +33,11 @@ class MeshResources {
   // Rebuilds everything but the LDI when the scene's meshes (or the TF unit
   // length they default to) changed.
   void update(const Scene& scene);
+  // The layered depth image for this camera and size; kept while neither
+  // they nor the meshes change (a TF or light edit does not rebuild it).
   void build_ldi(const CameraView& camera, int width, int height);
+  // How often the meshes' world copies and the LDI were rebuilt.
+  int builds() const { return mesh_builds_ + ldi_builds_; }
 
   bool empty() const { return objects_.empty(); }
   MeshesView view() const;
@@ -50,6 +54,10 @@ class MeshResources {
   std::vector<MeshMaterialView> objects_;
   Box3 bounds_{vec3(kInfinity), vec3(-kInfinity)};
   LayeredDepthImage ldi_;
+  CameraView ldi_camera_;
+  bool ldi_current_ = false;
+  int ldi_builds_ = 0;
+  int mesh_builds_ = 0;
 };
 
 }  // namespace penumbra

@@ -161,8 +161,9 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
     }
   });
   // Slabs continue to the farthest plane hit, at most one box diagonal beyond the box.
+  const float plane_limit = z_back + diagonal;
   for (const PixelState& p : px) {
-    if (p.plane >= 0) z_back = glm::max(z_back, glm::min(p.z_plane, box_depth(box, cam, true) + diagonal));
+    if (p.plane >= 0) z_back = glm::max(z_back, glm::min(p.z_plane, plane_limit));
   }
   const int slabs = int(std::ceil(glm::max(z_back - z_front, 0.0f) / e));
   if (slabs > kMaxSlabs) {

@@ -59,6 +59,7 @@ class SlabRenderer {
   void render(const Scene& scene, Image& image, RenderStats* stats = nullptr);
   std::uint64_t aux_bytes() const;
   int last_slab_count() const { return last_slabs_; }
+  int rebuilds() const { return meshes_.builds(); }
 
  private:
   SceneResources resources_;
