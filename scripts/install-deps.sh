@@ -16,7 +16,7 @@ packages=(
   libtbb-dev libglm-dev nlohmann-json3-dev libcli11-dev libfmt-dev
   zlib1g-dev libpng-dev libopenexr-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  libcpp-httplib-dev libjpeg-dev
+  libcpp-httplib-dev libjpeg-dev libhwy-dev
 )
 
 missing=()

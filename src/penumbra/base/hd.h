@@ -18,3 +18,11 @@
 #else
 #define PENUMBRA_FORCE_INLINE inline
 #endif
+
+// The same for a lambda, written after its parameter list:
+//   [&](float x) PENUMBRA_FORCE_INLINE_LAMBDA { ... }
+#if defined(__CUDACC__) || !(defined(__GNUC__) || defined(__clang__))
+#define PENUMBRA_FORCE_INLINE_LAMBDA
+#else
+#define PENUMBRA_FORCE_INLINE_LAMBDA __attribute__((always_inline))
+#endif

@@ -40,6 +40,10 @@ void parallel_for_tiles(int width, int height, int tile, const std::function<voi
   });
 }
 
+void parallel_for_tiles(int width, int height, int tile, TileFunction body, void* context) {
+  parallel_for_tiles(width, height, tile, [&](int x0, int y0, int x1, int y1) { body(context, x0, y0, x1, y1); });
+}
+
 void set_thread_count(int threads) {
   if (threads < 0) throw InvalidArgument("threads", "must be >= 0 (0 = all cores)");
   std::lock_guard lock(g_control_mutex);

@@ -17,6 +17,12 @@ void parallel_for(std::int64_t begin, std::int64_t end,
 void parallel_for_tiles(int width, int height, int tile,
                         const std::function<void(int, int, int, int)>& body);
 
+// The same with a plain function and context pointer: for code compiled
+// with other instruction-set flags (the SIMD units of backends/cpu), which
+// must not instantiate std::function's members itself.
+using TileFunction = void (*)(void* context, int x0, int y0, int x1, int y1);
+void parallel_for_tiles(int width, int height, int tile, TileFunction body, void* context);
+
 // Limits the worker threads of every later parallel_for (0 = all cores).
 void set_thread_count(int threads);
 int thread_count();
