@@ -26,6 +26,7 @@
 // Techniques other than the path tracer light with the central direction or
 // position of an area light (hard shadows) and leave environment lights out;
 // the scene's `ambient` is their stand-in for sky light.
+#include "penumbra/base/lanes.h"
 #include "penumbra/base/math.h"
 
 namespace penumbra {
@@ -83,34 +84,43 @@ PENUMBRA_HD inline vec2 gaussian_light_spreads(const Light& light) {
   return vec2(glm::tan(glm::radians(light.angle_deg)), glm::tan(glm::radians(light.spread_y_deg())));
 }
 
-// What a scattering point sees of a light's centre, before occlusion.
-struct LightSample {
-  vec3 to_light;   // unit vector from the point toward the light
-  float distance;  // to the light; +inf for lights at infinity
-  vec3 radiance;   // colour * intensity, with 1 / d^2 for lights at a position
+// What a scattering point sees of a light's centre, before occlusion, for
+// one position or a packet of them (base/lanes.h).
+template <class L> struct LightSampleL {
+  typename L::Vec3 to_light;   // unit vector from the point toward the light
+  typename L::Float distance;  // to the light; +inf for lights at infinity
+  typename L::Vec3 radiance;   // colour * intensity, with 1 / d^2 for lights at a position
 };
+using LightSample = LightSampleL<ScalarLanes>;
 
 // The light as the single-scattering techniques see it: area lights by their
 // centre. Environment lights give zero radiance here (see above).
-PENUMBRA_HD inline LightSample sample_light(const Light& light, vec3 p) {
+template <class L>
+PENUMBRA_HD PENUMBRA_FORCE_INLINE LightSampleL<L> sample_light(const Light& light, const typename L::Vec3& p) {
+  using F = typename L::Float;
+  using V = typename L::Vec3;
   switch (light.type) {
     case LightType::Point:
     case LightType::Sphere:
     case LightType::Disk: {
-      const vec3 d = light.position - p;
-      const float dist2 = glm::max(glm::dot(d, d), 1e-12f);
-      const float dist = glm::sqrt(dist2);
-      const vec3 to_light = d / dist;
-      float scale = light.intensity / dist2;
+      const V d = V(light.position) - p;
+      const F dist2 = max(dot(d, d), F(1e-12f));
+      const F dist = sqrt(dist2);
+      const V to_light = d / dist;
+      F scale = light.intensity / dist2;
       // A disk lights only the side it faces, with the cosine of its emission.
-      if (light.type == LightType::Disk) scale *= 2.0f * glm::max(0.0f, -glm::dot(to_light, light.direction));
-      return LightSample{to_light, dist, light.color * scale};
+      if (light.type == LightType::Disk) scale *= 2.0f * max(F(0.0f), -dot(to_light, V(light.direction)));
+      return LightSampleL<L>{to_light, dist, V(light.color) * scale};
     }
-    case LightType::Environment: return LightSample{vec3(0.0f, 0.0f, 1.0f), kInfinity, vec3(0.0f)};
+    case LightType::Environment: return LightSampleL<L>{V(vec3(0.0f, 0.0f, 1.0f)), F(kInfinity), V(0.0f)};
     case LightType::Directional:
     case LightType::Distant: break;
   }
-  return LightSample{-light.direction, kInfinity, light.color * light.intensity};
+  return LightSampleL<L>{V(-light.direction), F(kInfinity), V(light.color * light.intensity)};
+}
+
+PENUMBRA_HD PENUMBRA_FORCE_INLINE LightSample sample_light(const Light& light, vec3 p) {
+  return sample_light<ScalarLanes>(light, p);
 }
 
 }  // namespace penumbra

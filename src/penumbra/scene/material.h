@@ -22,13 +22,14 @@ struct Material {
   void validate() const;
 };
 
-// Henyey-Greenstein phase function times 4 pi (so isotropic = 1). cos_theta is
+// Henyey-Greenstein phase function times 4 pi (so isotropic = 1), for one
+// cosine or a packet of them (base/lanes.h). cos_theta is
 // the cosine of the scattering angle: between the direction the light travels
 // and the direction it leaves toward the viewer.
-PENUMBRA_HD inline float phase_hg_4pi(float g, float cos_theta) {
+template <class F> PENUMBRA_HD PENUMBRA_FORCE_INLINE F phase_hg_4pi(float g, F cos_theta) {
   const float g2 = g * g;
-  const float denom = 1.0f + g2 - 2.0f * g * cos_theta;
-  return (1.0f - g2) / (denom * glm::sqrt(denom));
+  const F denom = 1.0f + g2 - 2.0f * g * cos_theta;
+  return (1.0f - g2) / (denom * sqrt(denom));
 }
 
 }  // namespace penumbra

@@ -95,6 +95,7 @@ TransferFunctionTable::TransferFunctionTable(const TransferFunction& tf, vec2 va
   // Sparse table for constant-time range maxima of sigma_t.
   max_levels_.push_back({});
   for (const vec4& e : entries_) max_levels_[0].push_back(e.a);
+  sigma_ = max_levels_[0];
   for (int k = 1; (1 << k) <= size; ++k) {
     const std::vector<float>& prev = max_levels_[static_cast<std::size_t>(k - 1)];
     std::vector<float> level(static_cast<std::size_t>(size - (1 << k) + 1));
@@ -106,6 +107,7 @@ TransferFunctionTable::TransferFunctionTable(const TransferFunction& tf, vec2 va
 TransferFunctionView TransferFunctionTable::view() const {
   TransferFunctionView v;
   v.entries = entries_.data();
+  v.sigma = sigma_.data();
   v.size = static_cast<int>(entries_.size());
   v.value_min = value_range_.x;
   const float width = value_range_.y - value_range_.x;

@@ -58,12 +58,48 @@ class TransferFunction {
 };
 
 // The plain view kernels use: entries of (r, g, b, sigma_t) sampled uniformly
-// over the value range in data units, linearly interpolated.
+// over the value range in data units, linearly interpolated. The lookups are
+// written over a lane type (base/lanes.h); locate() once, then sigma_t() and
+// color() of the same place, so a kernel can skip the colour where no lane
+// has extinction.
 struct TransferFunctionView {
   const vec4* entries = nullptr;
+  const float* sigma = nullptr;  // entries[i].a on their own: 4x denser for lookups that need only extinction
   int size = 0;
   float value_min = 0.0f;
   float index_scale = 0.0f;  // (size - 1) / (value_max - value_min)
+
+  template <class L> struct Place {
+    typename L::Index entry;    // i: between entries i and i + 1
+    typename L::Float fraction;  // toward entry i + 1
+  };
+
+  // Where a finite data value falls in the table (values outside the range
+  // take the end entries).
+  template <class L> PENUMBRA_HD PENUMBRA_FORCE_INLINE Place<L> locate(typename L::Float value) const {
+    using F = typename L::Float;
+    using I = typename L::Int;
+    F x = (value - value_min) * index_scale;
+    x = select(x < 0.0f, F(0.0f), x);
+    const float last = float(size - 1);
+    x = select(x > last, F(last), x);
+    I i = to_int_nonnegative(x);
+    i = select(i > I(size - 2), I(size - 2), i);
+    return Place<L>{typename L::Index(i), x - to_float(i)};
+  }
+  template <class L> PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Float sigma_t(const Place<L>& at) const {
+    const typename L::Float a = gather(sigma, at.entry), b = gather(sigma + 1, at.entry);
+    return a + at.fraction * (b - a);
+  }
+  template <class L> PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Vec3 color(const Place<L>& at) const {
+    using F = typename L::Float;
+    const float* e = &entries[0].x;
+    const typename L::Index first = at.entry * 4;
+    const F r0 = gather(e + 0, first), r1 = gather(e + 4, first);
+    const F g0 = gather(e + 1, first), g1 = gather(e + 5, first);
+    const F b0 = gather(e + 2, first), b1 = gather(e + 6, first);
+    return typename L::Vec3(r0 + at.fraction * (r1 - r0), g0 + at.fraction * (g1 - g0), b0 + at.fraction * (b1 - b0));
+  }
 
   // (rgb, sigma_t per world unit) for a data value. NaN and +-inf are
   // transparent; values outside the range take the end entries.
@@ -74,16 +110,8 @@ struct TransferFunctionView {
 
   // The same for a value known to be finite (integer voxel types).
   PENUMBRA_HD PENUMBRA_FORCE_INLINE vec4 lookup_finite(float value) const {
-    float x = (value - value_min) * index_scale;
-    x = x < 0.0f ? 0.0f : x;
-    const float last = float(size - 1);
-    x = x > last ? last : x;
-    int i = int(x);
-    i = i > size - 2 ? size - 2 : i;
-    const float f = x - float(i);
-    const vec4 a = entries[i];
-    const vec4 b = entries[i + 1];
-    return a + f * (b - a);
+    const Place<ScalarLanes> at = locate<ScalarLanes>(value);
+    return vec4(color<ScalarLanes>(at), sigma_t<ScalarLanes>(at));
   }
 };
 
@@ -106,6 +134,7 @@ class TransferFunctionTable {
 
  private:
   std::vector<vec4> entries_;
+  std::vector<float> sigma_;  // entries_[i].a
   vec2 value_range_{0.0f, 1.0f};
   std::vector<std::vector<float>> max_levels_;  // max_levels_[k][i] = max sigma over [i, i + 2^k)
 };

@@ -6,6 +6,7 @@
 // Quantisation costs < 0.5 degree of normal direction; VolumeSampler::gradient
 // stays the exact reference. Zero gradients are stored as (0, 0, 0).
 #include "penumbra/base/math.h"
+#include "penumbra/volume/volume_sampler.h"
 #include "penumbra/volume/volume_view.h"
 
 #include <cstdint>
@@ -15,34 +16,42 @@ namespace penumbra {
 
 struct NormalView {
   const std::int8_t* texels = nullptr;  // 4 per voxel: x, y, z, 0
-  ivec3 dims{0};
+  VoxelGrid grid;
 
   // Interpolated gradient direction (not unit length: shorter where the
-  // neighbouring directions disagree, zero in homogeneous regions), at an
-  // index-space position.
-  PENUMBRA_HD PENUMBRA_FORCE_INLINE vec3 sample(vec3 p) const {
-    const vec3 upper = vec3(dims - 1);
-    p = glm::clamp(p, vec3(0.0f), upper);
-    const ivec3 i0 = glm::min(ivec3(p), glm::max(dims - 2, ivec3(0)));
-    const vec3 f = glm::min(p - vec3(i0), vec3(1.0f));
-    const std::int64_t sx = dims.x > 1 ? 4 : 0;
-    const std::int64_t sy = dims.y > 1 ? 4 * std::int64_t(dims.x) : 0;
-    const std::int64_t sz = dims.z > 1 ? 4 * std::int64_t(dims.x) * dims.y : 0;
-    const std::int8_t* c = texels + 4 * (i0.x + std::int64_t(dims.x) * (i0.y + std::int64_t(dims.y) * i0.z));
-    // Lane by lane over the four bytes of a texel, so the compiler can keep
-    // the whole interpolation in one vector register.
-    float r[4];
-    for (int k = 0; k < 4; ++k) {
-      const float x00 = float(c[k]) + f.x * (float(c[sx + k]) - float(c[k]));
-      const float x10 = float(c[sy + k]) + f.x * (float(c[sx + sy + k]) - float(c[sy + k]));
-      const float x01 = float(c[sz + k]) + f.x * (float(c[sx + sz + k]) - float(c[sz + k]));
-      const float x11 = float(c[sy + sz + k]) + f.x * (float(c[sx + sy + sz + k]) - float(c[sy + sz + k]));
-      const float y0 = x00 + f.y * (x10 - x00);
-      const float y1 = x01 + f.y * (x11 - x01);
-      r[k] = y0 + f.z * (y1 - y0);
-    }
-    return vec3(r[0], r[1], r[2]) * (1.0f / 127.0f);
+  // neighbouring directions disagree, zero in homogeneous regions), at
+  // index-space positions: the trilinear interpolation of trilinear() on
+  // 4-byte texels.
+  template <class L> PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Vec3 sample(const typename L::Vec3& p) const {
+    using F = typename L::Float;
+    using I = typename L::Int;
+    using X = typename L::Index;
+    using V = typename L::Vec3;
+    const VoxelGrid& g = grid;
+    const F px = clamp(p.x, F(0.0f), F(g.upper.x));
+    const F py = clamp(p.y, F(0.0f), F(g.upper.y));
+    const F pz = clamp(p.z, F(0.0f), F(g.upper.z));
+    const I ix = min(to_int_nonnegative(px), I(g.max_base.x));
+    const I iy = min(to_int_nonnegative(py), I(g.max_base.y));
+    const I iz = min(to_int_nonnegative(pz), I(g.max_base.z));
+    const F fx = min(px - to_float(ix), F(1.0f));
+    const F fy = min(py - to_float(iy), F(1.0f));
+    const F fz = min(pz - to_float(iz), F(1.0f));
+    const X base = X(ix) + X(g.dims.x) * (X(iy) + X(g.dims.y) * X(iz));
+    const X sx(g.stride_x), sy(g.stride_y), sz(g.stride_z);
+    const V c000 = load_texel_xyz(texels, base), c100 = load_texel_xyz(texels, base + sx);
+    const V c010 = load_texel_xyz(texels, base + sy), c110 = load_texel_xyz(texels, base + sx + sy);
+    const V c001 = load_texel_xyz(texels, base + sz), c101 = load_texel_xyz(texels, base + sx + sz);
+    const V c011 = load_texel_xyz(texels, base + sy + sz), c111 = load_texel_xyz(texels, base + sx + sy + sz);
+    const V x00 = c000 + fx * (c100 - c000);
+    const V x10 = c010 + fx * (c110 - c010);
+    const V x01 = c001 + fx * (c101 - c001);
+    const V x11 = c011 + fx * (c111 - c011);
+    const V y0 = x00 + fy * (x10 - x00);
+    const V y1 = x01 + fy * (x11 - x01);
+    return (y0 + fz * (y1 - y0)) * (1.0f / 127.0f);
   }
+  PENUMBRA_HD PENUMBRA_FORCE_INLINE vec3 sample(vec3 p) const { return sample<ScalarLanes>(p); }
 };
 
 class NormalVolume {
@@ -51,7 +60,7 @@ class NormalVolume {
   // Checks the memory budget first (4 bytes per voxel).
   explicit NormalVolume(const VolumeView& volume);
 
-  NormalView view() const { return NormalView{texels_.data(), dims_}; }
+  NormalView view() const { return NormalView{texels_.data(), VoxelGrid(dims_)}; }
   std::uint64_t bytes() const { return texels_.size(); }
   bool empty() const { return texels_.empty(); }
 

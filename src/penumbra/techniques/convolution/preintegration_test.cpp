@@ -7,15 +7,21 @@
 
 #include <cmath>
 #include <limits>
+#include <deque>
 #include <vector>
 
 namespace penumbra {
 namespace {
 
-// A TF view over [0, 1] from hand-made (rgb, sigma_t) entries.
+// A TF view over [0, 1] from hand-made (rgb, sigma_t) entries (its sigma
+// column lives as long as the test binary).
 TransferFunctionView view_of(const std::vector<vec4>& entries) {
+  static std::deque<std::vector<float>> columns;
+  std::vector<float>& sigma = columns.emplace_back();
+  for (const vec4& e : entries) sigma.push_back(e.a);
   TransferFunctionView v;
   v.entries = entries.data();
+  v.sigma = sigma.data();
   v.size = int(entries.size());
   v.value_min = 0.0f;
   v.index_scale = float(v.size - 1);
