@@ -10,36 +10,127 @@
 // in [0, 1] (grey for the physical model; techniques with coloured shadows
 // such as CSSM return colours). Opaque planes between a point and a light
 // block it for every technique.
+//
+// Samples are lit for one ray or a packet of rays (base/lanes.h). A
+// Visibility may also provide the packet form, written once over the lane
+// type (its operator() then being the one-lane instance):
+//   template <class L> L::Vec3 lanes(int light, const L::Vec3& position,
+//                                    const LightSampleL<L>&, L::Mask active) const
+// Without it, packets call operator() lane by lane (L::scalarize).
+#include "penumbra/backends/cpu/packets.h"
+#include "penumbra/base/lanes.h"
 #include "penumbra/render/march.h"
 #include "penumbra/scene/light.h"
 #include "penumbra/scene/material.h"
+#include "penumbra/volume/volume_sampler.h"
 
 namespace penumbra {
 
-// True when an opaque plane (other than `skip`) lies between p and the light.
-PENUMBRA_HD inline bool blocked_by_planes(const RenderView& v, vec3 p, const LightSample& ls, int skip = -1) {
-  const Ray ray{p, ls.to_light};
+// Lanes where an opaque plane (other than `skip`) lies between p and the light.
+template <class L>
+PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Mask blocked_by_planes(const RenderView& v, const typename L::Vec3& p,
+                                                                     const LightSampleL<L>& ls, int skip = -1) {
+  using F = typename L::Float;
+  using V = typename L::Vec3;
+  typename L::Mask blocked(false);
   for (int i = 0; i < v.plane_count; ++i) {
-    if (i != skip && intersect_plane(ray, v.planes[i], 0.0f, ls.distance) < kInfinity) return true;
+    if (i == skip) continue;
+    const V normal(v.planes[i].normal);
+    const F denom = dot(ls.to_light, normal);
+    const F t = dot(V(v.planes[i].point) - p, normal) / denom;
+    blocked = blocked | ((denom != 0.0f) & (t > 0.0f) & (t < ls.distance));
   }
-  return false;
+  return blocked;
+}
+
+PENUMBRA_HD inline bool blocked_by_planes(const RenderView& v, vec3 p, const LightSample& ls, int skip = -1) {
+  return blocked_by_planes<ScalarLanes>(v, p, ls, skip);
 }
 
 // Unit shading normal from the gradient (precomputed normals when the view
-// has them), facing the viewer; returns false where the gradient vanishes
+// has them), facing the viewer; false in lanes where the gradient vanishes
 // (homogeneous regions), which are then lit as if facing the light without a
 // highlight.
-PENUMBRA_HD PENUMBRA_FORCE_INLINE bool shading_normal(const RenderView& v, const SamplePoint& s, vec3& normal) {
-  const vec3 g = v.normals.texels ? v.normals.sample(s.index) : v.volume.gradient_index(s.index);
-  const float len = glm::length(g);
-  if (!(len > 0.0f) || !is_finite(len)) return false;
+template <class L>
+PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Mask shading_normal(const RenderView& v, const SamplePointL<L>& s,
+                                                                  typename L::Vec3& normal) {
+  using F = typename L::Float;
+  using V = typename L::Vec3;
+  const V g = v.normals.texels
+                  ? v.normals.sample<L>(s.index)
+                  : AnyVoxelSampler(v.volume.data, v.volume.dims, v.volume.type).gradient<L>(s.index) /
+                        V(v.volume.spacing);
+  const F len = length(g);
+  const auto ok = (len > 0.0f) & finite(len);
+  if (none(ok)) return ok;
   normal = -g / len;  // from high to low values: outward for a bright object
-  if (glm::dot(normal, s.ray_dir) > 0.0f) normal = -normal;
-  return true;
+  normal = select(dot(normal, s.ray_dir) > 0.0f, -normal, normal);
+  return ok;
+}
+
+PENUMBRA_HD inline bool shading_normal(const RenderView& v, const SamplePoint& s, vec3& normal) {
+  return shading_normal<ScalarLanes>(v, s, normal);
+}
+
+// The visibility of light `light` at packet or single positions (see above).
+template <class L, class Visibility>
+PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Vec3 light_visibility(const Visibility& visibility, int light,
+                                                                    const typename L::Vec3& p,
+                                                                    const LightSampleL<L>& ls, typename L::Mask active) {
+  if constexpr (L::kWidth == 1) {
+    return visibility(light, p, ls);
+  } else if constexpr (requires { visibility.template lanes<L>(light, p, ls, active); }) {
+    return visibility.template lanes<L>(light, p, ls, active);
+  } else {
+    return L::scalarize(visibility, light, p, ls, active);
+  }
+}
+
+// Lanes inside a box.
+template <class L>
+PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Mask box_contains(const Box3& box, const typename L::Vec3& p) {
+  return (p.x >= box.lower.x) & (p.y >= box.lower.y) & (p.z >= box.lower.z) & (p.x <= box.upper.x) &
+         (p.y <= box.upper.y) & (p.z <= box.upper.z);
+}
+
+// Trilinear lookups of a grid at world positions (VolumeView::sample for
+// lanes): the shadow caches of shadow-rays, filtered-sat, sat-ao and
+// cone-shadows.
+template <class L>
+PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Float sample_world(const VolumeView& grid, const typename L::Vec3& p) {
+  using V = typename L::Vec3;
+  return AnyVoxelSampler(grid.data, grid.dims, grid.type).sample<L>((p - V(grid.origin)) / V(grid.spacing));
+}
+
+// A cached visibility: the cache grid inside `box` (where the volume's
+// samples lie), the technique's direct lookup `direct` elsewhere (plane hits);
+// no cache (data == nullptr): always direct.
+template <class L, class Direct>
+PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Vec3 cached_visibility(const VolumeView& cache, const Box3& box,
+                                                                     const Direct& direct, int light,
+                                                                     const typename L::Vec3& p,
+                                                                     const LightSampleL<L>& ls,
+                                                                     typename L::Mask active) {
+  using V = typename L::Vec3;
+  if constexpr (L::kWidth == 1) {
+    if (cache.data && box.contains(p)) return V(cache.sample(p));
+    return direct(light, p, ls);
+  } else {
+    if (!cache.data) return light_visibility<L>(direct, light, p, ls, active);
+    const auto inside = box_contains<L>(box, p);
+    V result(sample_world<L>(cache, p));
+    const auto outside = active & !inside;
+    if (any(outside)) result = select(outside, light_visibility<L>(direct, light, p, ls, outside), result);
+    return result;
+  }
 }
 
 struct NoShadows {
   PENUMBRA_HD vec3 operator()(int, vec3, const LightSample&) const { return vec3(1.0f); }
+  template <class L>
+  PENUMBRA_HD typename L::Vec3 lanes(int, const typename L::Vec3&, const LightSampleL<L>&, typename L::Mask) const {
+    return typename L::Vec3(1.0f);
+  }
 };
 
 template <class Visibility>
@@ -48,38 +139,49 @@ struct ScatteringLighting {
   Visibility visibility;
   Shading shading;
 
-  PENUMBRA_HD PENUMBRA_FORCE_INLINE vec3 sample(const SamplePoint& s) const {
+  template <class L>
+  PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Vec3 sample(const SamplePointL<L>& s, typename L::Mask active) const {
+    using F = typename L::Float;
+    using V = typename L::Vec3;
+    using M = typename L::Mask;
     const RenderView& v = *view;
     const Material& m = v.material;
-    const vec3 albedo = m.albedo * s.color;
-    vec3 normal(0.0f);
+    const V albedo = m.albedo * s.color;
+    V normal(0.0f);
     const bool phong = shading == Shading::Phong;
-    const bool has_normal = phong && shading_normal(v, s, normal);
-    vec3 diffuse(m.ambient);
-    vec3 specular(0.0f);
+    M has_normal(false);
+    if (phong) has_normal = shading_normal<L>(v, s, normal) & active;
+    V diffuse(m.ambient);
+    V specular(0.0f);
     for (int i = 0; i < v.light_count; ++i) {
-      const LightSample ls = sample_light(v.lights[i], s.world);
-      float factor = 1.0f;
+      const LightSampleL<L> ls = sample_light<L>(v.lights[i], s.world);
+      F factor;
       if (!phong) {
-        factor = phase_hg_4pi(m.phase_g, glm::dot(ls.to_light, s.ray_dir));
-      } else if (has_normal) {
-        factor = m.diffuse * glm::max(0.0f, glm::dot(normal, ls.to_light));
+        factor = phase_hg_4pi(m.phase_g, dot(ls.to_light, s.ray_dir));
       } else {
-        factor = m.diffuse;
+        factor = select(has_normal, m.diffuse * max(F(0.0f), dot(normal, ls.to_light)), F(m.diffuse));
       }
-      const float highlight =
-          has_normal && m.specular > 0.0f
-              ? m.specular * pow_unit(glm::max(0.0f, glm::dot(normal, glm::normalize(ls.to_light - s.ray_dir))),
-                                      m.shininess)
-              : 0.0f;
-      if (factor <= 0.0f && highlight <= 0.0f) continue;
-      if (blocked_by_planes(v, s.world, ls)) continue;
-      const vec3 visible = visibility(i, s.world, ls) * ls.radiance;
-      diffuse += factor * visible;
-      specular += highlight * visible;
+      F highlight(0.0f);
+      if (m.specular > 0.0f && any(has_normal)) {
+        highlight = select(
+            has_normal,
+            m.specular * pow_unit(max(F(0.0f), dot(normal, normalize(ls.to_light - s.ray_dir))), m.shininess),
+            F(0.0f));
+      }
+      M lit = active & ((factor > 0.0f) | (highlight > 0.0f));
+      if (none(lit)) continue;
+      if (v.plane_count > 0) {
+        lit = lit & !blocked_by_planes<L>(v, s.world, ls);
+        if (none(lit)) continue;
+      }
+      const V visible = light_visibility<L>(visibility, i, s.world, ls, lit) * ls.radiance;
+      diffuse += select(lit, factor * visible, V(0.0f));
+      specular += select(lit, highlight * visible, V(0.0f));
     }
     return albedo * diffuse + specular;
   }
+
+  PENUMBRA_HD PENUMBRA_FORCE_INLINE vec3 sample(const SamplePoint& s) const { return sample<ScalarLanes>(s, true); }
 
   PENUMBRA_HD vec3 plane(const PlaneHit& h) const {
     const RenderView& v = *view;
@@ -102,8 +204,15 @@ struct ScatteringLighting {
 // show their colour.
 struct EmissionLighting {
   const RenderView* view;
+  template <class L>
+  PENUMBRA_HD typename L::Vec3 sample(const SamplePointL<L>& s, typename L::Mask) const {
+    return s.color;
+  }
   PENUMBRA_HD vec3 sample(const SamplePoint& s) const { return s.color; }
   PENUMBRA_HD vec3 plane(const PlaneHit& h) const { return view->planes[h.plane].color; }
 };
+
+PENUMBRA_PACKET_LIGHTING(EmissionLighting);
+PENUMBRA_PACKET_LIGHTING(ScatteringLighting<NoShadows>);
 
 }  // namespace penumbra

@@ -1,21 +1,23 @@
 #pragma once
 // The marching loop every technique shares (DESIGN.md 1): clip the ray to the
 // volume box, the clip planes and the nearest opaque plane, walk the macrocell
-// grid so empty space costs no samples, and composite front to back with
-// opacity correction alpha = 1 - exp(-sigma_t * length) and early ray
-// termination. A technique supplies only how a sample is lit (a Lighting type
-// with sample() and plane(), see lighting.h).
+// grid so empty space costs no samples (sample_cursor.h), and composite front
+// to back with opacity correction alpha = 1 - exp(-sigma_t * length) and early
+// ray termination. A technique supplies only how a sample is lit (a Lighting
+// type with sample() and plane(), see lighting.h).
 //
-// Sampling convention: the ray's interval [t0, t1] is cut into segments of the
-// step ds (the last one shorter); segment k is represented by one sample at
-// offset * length inside it (offset 0.5 = midpoint, or a per-pixel random
-// value with jitter). Segment lengths add up to t1 - t0 exactly, so a
-// homogeneous medium integrates to exp(-sigma_t (t1 - t0)) at any step.
+// The loop is written once over a lane type L (base/lanes.h): march_rays<L>
+// marches L::kWidth rays in lockstep, each lane with its own interval,
+// macrocell walk and termination. march_ray() is its one-lane instance (the
+// scalar CPU path and CUDA); the CPU backend's packet path instantiates it
+// with SimdLanes (backends/cpu).
 //
-// Kernels take a Sampler (VolumeSampler<T>, see volume_sampler.h) so the
-// per-sample code is specialised for the voxel type.
+// Kernels take a Sampler (VolumeSampler<T> or AnyVoxelSampler, see
+// volume_sampler.h) with sample<L>(index position) and all_finite().
+#include "penumbra/base/lanes.h"
 #include "penumbra/base/ray.h"
 #include "penumbra/render/render_view.h"
+#include "penumbra/render/sample_cursor.h"
 
 #include <cstdint>
 
@@ -23,16 +25,19 @@ namespace penumbra {
 
 struct RayStats {
   std::uint64_t samples = 0;  // volume samples taken (trilinear lookups)
+  std::uint64_t steps = 0;    // packet steps of viewing rays (samples / (steps * lanes): lane utilisation)
 };
 
-struct SamplePoint {
-  vec3 world;     // world position
-  vec3 index;     // index-space position
-  float value;    // interpolated scalar
-  vec3 color;     // TF colour
-  float sigma_t;  // extinction per world unit
-  vec3 ray_dir;   // unit direction of the viewing ray
+// One volume sample as Lighting::sample sees it, for one ray or a packet.
+template <class L> struct SamplePointL {
+  typename L::Vec3 world;      // world position
+  typename L::Vec3 index;      // index-space position
+  typename L::Float value;     // interpolated scalar
+  typename L::Vec3 color;      // TF colour
+  typename L::Float sigma_t;   // extinction per world unit
+  typename L::Vec3 ray_dir;    // unit direction of the viewing ray
 };
+using SamplePoint = SamplePointL<ScalarLanes>;
 
 struct PlaneHit {
   vec3 position;
@@ -40,216 +45,54 @@ struct PlaneHit {
   vec3 ray_dir;
 };
 
-struct SampleGrid {
-  float t0 = 0.0f;
-  float t1 = 0.0f;
-  float ds = 1.0f;
-  float offset = 0.5f;
-  int count = 0;
-
-  PENUMBRA_HD SampleGrid(Interval iv, float step, float sample_offset)
-      : t0(iv.t0), t1(iv.t1), ds(step), offset(sample_offset) {
-    count = iv.empty() ? 0 : int(glm::ceil((iv.t1 - iv.t0) / step));
-    if (count < 1 && !iv.empty()) count = 1;
+// W scalar vectors as one vector of lanes.
+template <class L> PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Vec3 pack_lanes(const vec3* values) {
+  float x[L::kWidth], y[L::kWidth], z[L::kWidth];
+  for (int i = 0; i < L::kWidth; ++i) {
+    x[i] = values[i].x;
+    y[i] = values[i].y;
+    z[i] = values[i].z;
   }
-  PENUMBRA_HD float start(int k) const { return t0 + float(k) * ds; }
-  PENUMBRA_HD float length(int k) const { return glm::min(ds, t1 - start(k)); }
-  PENUMBRA_HD float position(int k) const { return start(k) + offset * length(k); }
-  // First segment whose sample lies at or after t.
-  PENUMBRA_HD int first_at_or_after(float t) const {
-    int k = int(glm::ceil((t - t0) / ds - offset));
-    k = k < 0 ? 0 : (k > count ? count : k);
-    while (k > 0 && position(k - 1) >= t) --k;
-    while (k < count && position(k) < t) ++k;
-    return k;
-  }
-};
+  return typename L::Vec3(L::load(x), L::load(y), L::load(z));
+}
 
-// The macrocell walk of one ray: a 3D DDA (Amanatides & Woo 1987) that also
-// jumps over cubes of empty macrocells using the empty-space distance.
-class MacrocellWalk {
- public:
-  PENUMBRA_HD MacrocellWalk(const RenderView& v, const Ray& ray, float t)
-      : v_(v), size_(float(v.macrocells.cell_size)), origin_(v.volume.index_from_world(ray.origin)),
-        dir_(ray.direction / v.volume.spacing) {
-    for (int a = 0; a < 3; ++a) inv_dir_[a] = dir_[a] != 0.0f ? 1.0f / dir_[a] : 0.0f;
-    restart(t);
-  }
+// One vector of lanes as W scalar vectors.
+template <class L> PENUMBRA_HD PENUMBRA_FORCE_INLINE void unpack_lanes(const typename L::Vec3& lanes, vec3* values) {
+  float x[L::kWidth], y[L::kWidth], z[L::kWidth];
+  L::store(lanes.x, x);
+  L::store(lanes.y, y);
+  L::store(lanes.z, z);
+  for (int i = 0; i < L::kWidth; ++i) values[i] = vec3(x[i], y[i], z[i]);
+}
 
-  PENUMBRA_HD float t() const { return t_; }
-  PENUMBRA_HD float majorant() const { return v_.majorants[v_.macrocells.index(cell_)]; }
-  PENUMBRA_HD float cell_exit() const { return glm::min(t_next_.x, glm::min(t_next_.y, t_next_.z)); }
-
-  // Moves to the next macrocell along the ray; false when the ray leaves the grid.
-  PENUMBRA_HD bool step() {
-    const int axis = t_next_.x < t_next_.y ? (t_next_.x < t_next_.z ? 0 : 2) : (t_next_.y < t_next_.z ? 1 : 2);
-    t_ = glm::max(t_, t_next_[axis]);
-    cell_[axis] += step_[axis];
-    if (cell_[axis] < 0 || cell_[axis] >= v_.macrocells.dims[axis]) return false;
-    t_next_[axis] += t_delta_[axis];
-    return true;
-  }
-
-  // In an empty cell: moves past the cube of cells that are all empty around
-  // it (or one cell when that cube is the cell itself). False when the ray
-  // leaves the grid.
-  PENUMBRA_HD bool skip_empty() {
-    const int radius = int(v_.empty_distance[v_.macrocells.index(cell_)]) - 1;
-    if (radius < 1) return step();
-    float t_exit = kInfinity;
-    for (int a = 0; a < 3; ++a) {
-      if (dir_[a] == 0.0f) continue;
-      const float bound = dir_[a] > 0.0f ? float(cell_[a] + radius + 1) * size_ : float(cell_[a] - radius) * size_;
-      t_exit = glm::min(t_exit, (bound - origin_[a]) * inv_dir_[a]);
-    }
-    if (!(t_exit > cell_exit())) return step();
-    restart(t_exit);
-    return inside_;
-  }
-
- private:
-  PENUMBRA_HD void restart(float t) {
-    t_ = t;
-    const vec3 p = (origin_ + t * dir_) / size_;
-    const ivec3 dims = v_.macrocells.dims;
-    inside_ = true;
-    for (int a = 0; a < 3; ++a) {
-      float c = glm::floor(p[a]);
-      // On a cell boundary, belong to the cell the ray moves into.
-      if (dir_[a] < 0.0f && c == p[a]) c -= 1.0f;
-      cell_[a] = int(c);
-      if (cell_[a] < 0 || cell_[a] >= dims[a]) {
-        // Rounding at the grid border when entering: clamp; leaving: stop.
-        const bool entering = (cell_[a] < 0) == (dir_[a] > 0.0f);
-        if (!entering && dir_[a] != 0.0f) inside_ = false;
-        cell_[a] = glm::clamp(cell_[a], 0, dims[a] - 1);
-      }
-      if (dir_[a] > 0.0f) {
-        step_[a] = 1;
-        t_next_[a] = (float(cell_[a] + 1) * size_ - origin_[a]) * inv_dir_[a];
-        t_delta_[a] = size_ * inv_dir_[a];
-      } else if (dir_[a] < 0.0f) {
-        step_[a] = -1;
-        t_next_[a] = (float(cell_[a]) * size_ - origin_[a]) * inv_dir_[a];
-        t_delta_[a] = -size_ * inv_dir_[a];
-      } else {
-        step_[a] = 0;
-        t_next_[a] = kInfinity;
-        t_delta_[a] = kInfinity;
-      }
-    }
-  }
-
-  const RenderView& v_;
-  float size_;
-  vec3 origin_;
-  vec3 dir_;
-  vec3 inv_dir_{0.0f};
-  float t_ = 0.0f;
-  bool inside_ = true;
-  ivec3 cell_{0};
-  ivec3 step_{0};
-  vec3 t_next_{kInfinity};
-  vec3 t_delta_{kInfinity};
-};
-
-// The runs of consecutive non-empty macrocells that a ray crosses within
-// [t0, t1], front to back, with empty space skipped:
-//   OccupiedRuns runs(view, ray, t0, t1);
-//   for (float a, b; runs.next(a, b);) { ... }
-class OccupiedRuns {
- public:
-  PENUMBRA_HD OccupiedRuns(const RenderView& v, const Ray& ray, float t0, float t1) : walk_(v, ray, t0), t1_(t1) {}
-
-  PENUMBRA_HD PENUMBRA_FORCE_INLINE bool next(float& a, float& b) {
-    while (alive_ && walk_.t() < t1_) {
-      if (walk_.majorant() > 0.0f) {
-        if (run_start_ < 0.0f) run_start_ = walk_.t();
-        alive_ = walk_.step();
-      } else {
-        const bool ends_run = run_start_ >= 0.0f;
-        if (ends_run) {
-          a = run_start_;
-          b = glm::min(walk_.t(), t1_);
-          run_start_ = -1.0f;
-        }
-        alive_ = walk_.skip_empty();
-        if (ends_run) return true;
-      }
-    }
-    if (run_start_ >= 0.0f && run_start_ < t1_) {
-      a = run_start_;
-      b = glm::min(walk_.t(), t1_);
-      run_start_ = -1.0f;
-      return true;
-    }
-    return false;
-  }
-
- private:
-  MacrocellWalk walk_;
-  float t1_;
-  float run_start_ = -1.0f;  // < 0: not inside a run
-  bool alive_ = true;
-};
-
-// Calls visit(t_begin, t_end, majorant) for every macrocell with a positive
-// majorant that the ray crosses within [t0, t1], front to back (the path
-// tracer's piecewise-constant majorant). Stops when visit returns false.
-template <class Visit>
-PENUMBRA_HD void for_each_occupied_cell(const RenderView& v, const Ray& ray, float t0, float t1, Visit&& visit) {
-  MacrocellWalk walk(v, ray, t0);
-  while (walk.t() < t1) {
-    const float m = walk.majorant();
-    if (m > 0.0f) {
-      const float end = glm::min(walk.cell_exit(), t1);
-      if (end > walk.t() && !visit(walk.t(), end, m)) return;
-      if (!walk.step()) return;
-    } else if (!walk.skip_empty()) {
-      return;
-    }
+// Lighting::sample for one ray or a packet: the Lighting's lane form when it
+// has one (sample<L>(s, active)), else its scalar sample(s) on one lane.
+template <class L, class Lighting>
+PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Vec3 light_sample(const Lighting& lighting, const SamplePointL<L>& s,
+                                                                typename L::Mask active) {
+  if constexpr (requires { lighting.template sample<L>(s, active); }) {
+    return lighting.template sample<L>(s, active);
+  } else {
+    static_assert(L::kWidth == 1, "a Lighting with a packet path needs template <class L> sample(SamplePointL<L>, L::Mask)");
+    return lighting.sample(s);
   }
 }
 
-// The samples of `grid` that lie in non-empty macrocells, front to back:
-//   SampleCursor cursor(view, ray, grid);
-//   for (int k; float t; cursor.next(k, t)) { ... segment k, at ray parameter t ... }
-// A plain loop rather than a callback, so the caller's accumulators stay in
-// registers.
-class SampleCursor {
- public:
-  PENUMBRA_HD SampleCursor(const RenderView& v, const Ray& ray, const SampleGrid& grid)
-      : runs_(v, ray, grid.t0, grid.t1), grid_(grid), k_(grid.count) {}
-
-  PENUMBRA_HD PENUMBRA_FORCE_INLINE bool next(int& k, float& t) {
-    for (;;) {
-      if (k_ < grid_.count) {
-        const float tk = grid_.position(k_);
-        if (last_run_ || tk < run_end_) {
-          k = k_++;
-          t = tk;
-          return true;
-        }
-      } else if (started_) {
-        return false;  // every segment has been visited
-      }
-      float a = 0.0f, b = 0.0f;
-      if (!runs_.next(a, b)) return false;
-      started_ = true;
-      run_end_ = b;
-      last_run_ = b >= grid_.t1;
-      k_ = grid_.first_at_or_after(a);
-    }
+// The extinction at data values (0 where a value is NaN or infinite).
+template <class L, class Sampler>
+PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Float sample_extinction(const TransferFunctionView& tf,
+                                                                      const Sampler& sampler,
+                                                                      typename L::Float value,
+                                                                      typename TransferFunctionView::Place<L>& at) {
+  using F = typename L::Float;
+  if (sampler.all_finite()) {
+    at = tf.locate<L>(value);
+    return tf.sigma_t<L>(at);
   }
-
- private:
-  OccupiedRuns runs_;
-  const SampleGrid& grid_;
-  int k_;
-  float run_end_ = 0.0f;
-  bool last_run_ = false;
-  bool started_ = false;
-};
+  const auto finite_value = finite(value);
+  at = tf.locate<L>(select(finite_value, value, F(0.0f)));
+  return select(finite_value, tf.sigma_t<L>(at), F(0.0f));
+}
 
 // The part of a ray inside the volume box and the clip planes, within [t_min, t_max].
 PENUMBRA_HD inline Interval volume_interval(const RenderView& v, const Ray& ray, float t_min, float t_max) {
@@ -259,31 +102,52 @@ PENUMBRA_HD inline Interval volume_interval(const RenderView& v, const Ray& ray,
 // Optical depth beyond which transmittance counts as zero (e^-11.5 ~ 1e-5).
 inline constexpr float kMaxOpticalDepth = 11.5f;
 
-// Transmittance exp(-integral sigma_t) from ray.origin along ray.direction up
-// to t_max (the volume boundary or a point light), with sigma_t scaled by
-// density_scale. Respects clip planes; skips empty macrocells.
-template <class Sampler>
-PENUMBRA_HD float march_transmittance(const RenderView& v, const Sampler& sampler, const Ray& ray, float t_max,
-                                      float density_scale, RayStats& stats) {
-  const SampleGrid grid(volume_interval(v, ray, 0.0f, t_max), v.step, 0.5f);
-  if (grid.count == 0 || density_scale <= 0.0f) return 1.0f;
-  const vec3 o = v.volume.index_from_world(ray.origin);
-  const vec3 d = ray.direction / v.volume.spacing;
+// Transmittance exp(-integral sigma_t) from each ray's origin along its
+// direction up to t_max (the volume boundary or a point light), with sigma_t
+// scaled by density_scale, for the W rays of `rays` whose lane is on.
+// Respects clip planes; skips empty macrocells.
+template <class L, class Sampler>
+PENUMBRA_HD typename L::Float march_transmittance(const RenderView& v, const Sampler& sampler, const Ray* rays,
+                                                  const float* t_max, float density_scale, typename L::Mask lanes,
+                                                  RayStats& stats) {
+  using F = typename L::Float;
+  using V = typename L::Vec3;
+  using M = typename L::Mask;
+  constexpr int W = L::kWidth;
+  if (density_scale <= 0.0f) return F(1.0f);
+  SampleGrid grids[W];
+  vec3 origins[W], directions[W];
+  for (int i = 0; i < W; ++i) {
+    grids[i] = SampleGrid(volume_interval(v, rays[i], 0.0f, t_max[i]), v.step, 0.5f);
+    origins[i] = v.volume.index_from_world(rays[i].origin);
+    directions[i] = rays[i].direction / v.volume.spacing;
+  }
+  LaneCursor<L> cursor(v, rays, grids, lanes);
+  const V o = pack_lanes<L>(origins);
+  const V d = pack_lanes<L>(directions);
   const TransferFunctionView tf = v.tf;
-  float depth = 0.0f;
+  F depth(0.0f);
   std::uint64_t samples = 0;
-  SampleCursor cursor(v, ray, grid);
-  int k;
-  float t;
-  while (cursor.next(k, t)) {
-    ++samples;
-    const float value = sampler(o + t * d);
-    depth += (Sampler::kAlwaysFinite ? tf.lookup_finite(value) : tf.lookup(value)).a * grid.length(k);
-    if (depth * density_scale >= kMaxOpticalDepth) break;
+  F t, length;
+  M has;
+  while (cursor.next(t, length, has)) {
+    samples += std::uint64_t(count_true(has));
+    const F value = sampler.template sample<L>(o + t * d);
+    typename TransferFunctionView::Place<L> at;
+    depth += select(has, sample_extinction<L>(tf, sampler, value, at) * length, F(0.0f));
+    const M opaque = has & (depth * density_scale >= kMaxOpticalDepth);
+    if (any(opaque)) cursor.stop(opaque);
   }
   stats.samples += samples;
   depth *= density_scale;
-  return depth < kMaxOpticalDepth ? exp_nonpositive(-depth) : 0.0f;
+  return select(depth < kMaxOpticalDepth, exp_nonpositive(-depth), F(0.0f));
+}
+
+// One ray.
+template <class Sampler>
+PENUMBRA_HD float march_transmittance(const RenderView& v, const Sampler& sampler, const Ray& ray, float t_max,
+                                      float density_scale, RayStats& stats) {
+  return march_transmittance<ScalarLanes>(v, sampler, &ray, &t_max, density_scale, true, stats);
 }
 
 // The same, dispatching on the voxel type (one switch per ray).
@@ -308,45 +172,154 @@ PENUMBRA_HD inline int nearest_plane(const RenderView& v, const Ray& ray, float 
   return hit;
 }
 
+// Front-to-back compositing of a stream of viewing rays, L::kWidth at a
+// time: `rays` gives them (bool next(Ray&, float& sample_offset, int& id))
+// and takes each one's linear rgb and accumulated opacity (1 where an
+// opaque plane was reached) when it ends (void finish(int id, vec4)). A lane
+// whose ray ends starts the next ray of the stream at once, so lanes stay
+// busy however different the rays' lengths are.
+template <class L, class Sampler, class Lighting, class Rays>
+PENUMBRA_HD void march_rays(const RenderView& v, const Sampler& sampler, Rays& rays, const Lighting& lighting,
+                            RayStats& stats) {
+  using F = typename L::Float;
+  using V = typename L::Vec3;
+  using M = typename L::Mask;
+  constexpr int W = L::kWidth;
+  // New rays start when this many lanes are idle (or when no lane has a
+  // sample left): one restart costs about what a few packet steps do.
+  constexpr int kRestartLanes = W;
+  // Per lane: the ray, where it meets a plane, and the packet values (as
+  // columns: x[i], y[i], z[i]) to reload after a restart.
+  Ray lane_ray[W];
+  int lane_id[W] = {}, lane_plane[W] = {};
+  float lane_t_plane[W] = {};
+  float columns[12][W] = {};  // index-space origin and direction, world origin and direction
+  float red[W], green[W], blue[W], transmittances[W];
+  std::uint32_t occupied = 0;
+
+  LaneCursor<L> cursor(v, v.step);
+  V o(0.0f), d(0.0f), world_origin(0.0f), world_direction(0.0f), color(0.0f);
+  F transmittance(1.0f);
+  M terminated(false);
+  const TransferFunctionView tf = v.tf;
+  const float min_transmittance = 1.0f - v.ert_threshold;
+  std::uint64_t samples = 0, steps = 0;
+  std::uint32_t finished = (1u << W) - 1u;  // every lane starts a ray
+  bool more = true;
+  for (;;) {
+    if (finished != 0 && (!more || bit_count(finished) >= kRestartLanes)) {
+      // End the rays of the finished lanes (behind an early termination
+      // nothing; else the opaque plane a ray reached or the background) and
+      // start the next rays of the stream on them.
+      L::store(color.x, red);
+      L::store(color.y, green);
+      L::store(color.z, blue);
+      L::store(transmittance, transmittances);
+      std::uint32_t stopped = L::bits(terminated);
+      cursor.begin_starts();
+      for (std::uint32_t todo = finished; todo != 0; todo &= todo - 1) {
+        const int i = lowest_bit(todo);
+        if ((occupied >> i) & 1u) {
+          const vec3 c(red[i], green[i], blue[i]);
+          const float tr = transmittances[i];
+          if ((stopped >> i) & 1u) {
+            rays.finish(lane_id[i], vec4(c, 1.0f - tr));
+          } else if (lane_plane[i] >= 0) {
+            const Ray& r = lane_ray[i];
+            const vec3 lit = lighting.plane(PlaneHit{r.at(lane_t_plane[i]), lane_plane[i], r.direction});
+            rays.finish(lane_id[i], vec4(c + tr * lit, 1.0f));
+          } else {
+            rays.finish(lane_id[i], vec4(c + tr * v.background, 1.0f - tr));
+          }
+        }
+        float offset = 0.5f;
+        if (!rays.next(lane_ray[i], offset, lane_id[i])) {
+          occupied &= ~(1u << i);
+          continue;
+        }
+        occupied |= 1u << i;
+        const Ray& r = lane_ray[i];
+        lane_plane[i] = nearest_plane(v, r, kInfinity, lane_t_plane[i]);
+        cursor.start(i, r, SampleGrid(volume_interval(v, r, 0.0f, lane_t_plane[i]), v.step, offset));
+        const vec3 values[4] = {v.volume.index_from_world(r.origin), r.direction / v.volume.spacing, r.origin,
+                                r.direction};
+        for (int c = 0; c < 4; ++c) {
+          columns[3 * c][i] = values[c].x;
+          columns[3 * c + 1][i] = values[c].y;
+          columns[3 * c + 2][i] = values[c].z;
+        }
+        red[i] = green[i] = blue[i] = 0.0f;
+        transmittances[i] = 1.0f;
+        stopped &= ~(1u << i);
+      }
+      cursor.end_starts();
+      o = V(L::load(columns[0]), L::load(columns[1]), L::load(columns[2]));
+      d = V(L::load(columns[3]), L::load(columns[4]), L::load(columns[5]));
+      world_origin = V(L::load(columns[6]), L::load(columns[7]), L::load(columns[8]));
+      world_direction = V(L::load(columns[9]), L::load(columns[10]), L::load(columns[11]));
+      color = V(L::load(red), L::load(green), L::load(blue));
+      transmittance = L::load(transmittances);
+      terminated = L::from_bits(stopped);
+      finished = 0;
+      if (occupied == 0) break;
+    }
+    F t, length;
+    M has;
+    more = cursor.next(t, length, has);
+    finished |= cursor.take_finished();
+    if (!more) {
+      if (finished == 0) break;
+      continue;
+    }
+    samples += std::uint64_t(count_true(has));
+    ++steps;
+    const V p = o + t * d;
+    const F value = sampler.template sample<L>(p);
+    typename TransferFunctionView::Place<L> at;
+    const F sigma_t = sample_extinction<L>(tf, sampler, value, at);
+    const M lit = has & (sigma_t > 0.0f);
+    if (none(lit)) continue;
+    const F alpha = 1.0f - exp_nonpositive(-sigma_t * length);
+    const SamplePointL<L> s{world_origin + t * world_direction, p, value, tf.color<L>(at), sigma_t, world_direction};
+    color += select(lit, (transmittance * alpha) * light_sample<L>(lighting, s, lit), V(0.0f));
+    transmittance = select(lit, transmittance * (1.0f - alpha), transmittance);
+    const M done = lit & (transmittance <= min_transmittance);
+    if (any(done)) {
+      terminated = terminated | done;  // early ray termination
+      cursor.stop(done);
+      finished |= cursor.take_finished();
+    }
+  }
+  stats.samples += samples;
+  stats.steps += steps;
+}
+
+// A stream of `count` given rays (march_rays), results into out[i].
+struct RayList {
+  const Ray* rays;
+  const float* offsets;
+  vec4* out;
+  int count;
+  int taken = 0;
+  PENUMBRA_HD bool next(Ray& ray, float& offset, int& id) {
+    if (taken >= count) return false;
+    ray = rays[taken];
+    offset = offsets[taken];
+    id = taken++;
+    return true;
+  }
+  PENUMBRA_HD void finish(int id, vec4 result) { out[id] = result; }
+};
+
 // Front-to-back compositing of one viewing ray. Returns linear rgb and the
 // accumulated opacity (1 where an opaque plane was reached).
 template <class Sampler, class Lighting>
 PENUMBRA_HD vec4 march_ray(const RenderView& v, const Sampler& sampler, const Ray& ray, float offset,
                            const Lighting& lighting, RayStats& stats) {
-  float t_plane = kInfinity;
-  const int plane = nearest_plane(v, ray, kInfinity, t_plane);
-  const SampleGrid grid(volume_interval(v, ray, 0.0f, t_plane), v.step, offset);
-  const vec3 o = v.volume.index_from_world(ray.origin);
-  const vec3 d = ray.direction / v.volume.spacing;
-  const TransferFunctionView tf = v.tf;
-  const float min_transmittance = 1.0f - v.ert_threshold;
-  vec3 color(0.0f);
-  float transmittance = 1.0f;
-  std::uint64_t samples = 0;
-  SampleCursor cursor(v, ray, grid);
-  int k;
-  float t;
-  while (cursor.next(k, t)) {
-    ++samples;
-    const vec3 p = o + t * d;
-    const float value = sampler(p);
-    const vec4 c = Sampler::kAlwaysFinite ? tf.lookup_finite(value) : tf.lookup(value);
-    if (c.a <= 0.0f) continue;
-    const float alpha = 1.0f - exp_nonpositive(-c.a * grid.length(k));
-    const SamplePoint s{ray.at(t), p, value, vec3(c), c.a, ray.direction};
-    color += (transmittance * alpha) * lighting.sample(s);
-    transmittance *= 1.0f - alpha;
-    if (transmittance <= min_transmittance) {
-      stats.samples += samples;
-      return vec4(color, 1.0f - transmittance);  // early ray termination
-    }
-  }
-  stats.samples += samples;
-  if (plane >= 0) {
-    color += transmittance * lighting.plane(PlaneHit{ray.at(t_plane), plane, ray.direction});
-    return vec4(color, 1.0f);
-  }
-  return vec4(color + transmittance * v.background, 1.0f - transmittance);
+  vec4 out;
+  RayList list{&ray, &offset, &out, 1};
+  march_rays<ScalarLanes>(v, sampler, list, lighting, stats);
+  return out;
 }
 
 }  // namespace penumbra

@@ -1,6 +1,9 @@
 #pragma once
 // The CPU backend's image loop: primary rays over 16x16 tiles in parallel,
-// each pixel marched with the technique's Lighting.
+// each pixel marched with the technique's Lighting; as packets of 8 or 16
+// rays (backends/cpu/packet_render.h) when the Lighting has a packet path
+// and packets are on, else one ray at a time.
+#include "penumbra/backends/cpu/packets.h"
 #include "penumbra/base/parallel.h"
 #include "penumbra/base/rng.h"
 #include "penumbra/render/image.h"
@@ -8,6 +11,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <type_traits>
 
 namespace penumbra {
 
@@ -21,8 +25,30 @@ PENUMBRA_HD inline float pixel_sample_offset(const RenderView& v, int x, int y) 
 struct RenderStats {
   std::uint64_t samples = 0;
   std::uint64_t rays = 0;
+  std::uint64_t steps = 0;   // packet steps of the shared loop's viewing rays (see RayStats)
   std::uint64_t passes = 0;  // sweep steps of sweeping techniques (convolution's slabs); 0 for the others
+  SimdTarget simd = SimdTarget::Scalar;  // the packets the shared loop ran as (Scalar: one ray at a time)
 };
+
+// Renders with a Lighting's packet path when it has one and `view` can run
+// as packets on the active target, and returns that target; Scalar (nothing
+// rendered) when the caller must render one ray at a time.
+template <class Lighting>
+SimdTarget render_image_packets(const RenderView& v, const Lighting& lighting, Image& image, RayStats& stats) {
+  if constexpr (PacketLighting<Lighting>::value) {
+    const SimdTarget target = packet_target(v);
+    switch (target) {
+#if defined(PENUMBRA_SIMD_AVX3)
+      case SimdTarget::Avx3: render_packets<SimdTarget::Avx3>(v, lighting, image, stats); return target;
+#endif
+#if defined(PENUMBRA_SIMD_AVX2)
+      case SimdTarget::Avx2: render_packets<SimdTarget::Avx2>(v, lighting, image, stats); return target;
+#endif
+      default: break;
+    }
+  }
+  return SimdTarget::Scalar;
+}
 
 // Renders every pixel with march_ray. make_lighting(sampler) returns the
 // technique's Lighting for the volume's typed sampler (called once; the voxel
@@ -30,9 +56,13 @@ struct RenderStats {
 template <class MakeLighting>
 void render_image(const RenderView& v, const MakeLighting& make_lighting, Image& image, RenderStats* stats = nullptr) {
   if (image.width() != v.width || image.height() != v.height) image = Image(v.width, v.height);
-  std::atomic<std::uint64_t> total_samples{0};
+  RayStats totals;
+  SimdTarget simd = SimdTarget::Scalar;
   with_sampler(v.volume, [&](const auto& sampler) {
     const auto lighting = make_lighting(sampler);
+    simd = render_image_packets(v, lighting, image, totals);
+    if (simd != SimdTarget::Scalar) return 0;
+    std::atomic<std::uint64_t> total_samples{0}, total_steps{0};
     parallel_for_tiles(v.width, v.height, 16, [&](int x0, int y0, int x1, int y1) {
       RayStats tile_stats;
       for (int y = y0; y < y1; ++y) {
@@ -42,12 +72,17 @@ void render_image(const RenderView& v, const MakeLighting& make_lighting, Image&
         }
       }
       total_samples.fetch_add(tile_stats.samples, std::memory_order_relaxed);
+      total_steps.fetch_add(tile_stats.steps, std::memory_order_relaxed);
     });
+    totals.samples = total_samples.load();
+    totals.steps = total_steps.load();
     return 0;
   });
   if (stats) {
-    stats->samples += total_samples.load();
+    stats->samples += totals.samples;
+    stats->steps += totals.steps;
     stats->rays += std::uint64_t(v.width) * std::uint64_t(v.height);
+    stats->simd = simd;
   }
 }
 

@@ -65,7 +65,7 @@ void EarlyTermination::compute(const RenderView& view, const Light& light, const
           if (iv.empty()) continue;
           float last_end = -kInfinity;
           OccupiedRuns runs(view, ray, iv.t0, iv.t1);
-          for (float a, b; runs.next(a, b);) last_end = b;
+          for (float a = 0.0f, b = 0.0f; runs.next(a, b);) last_end = b;
           back_[i] = last_end;
           const SampleGrid grid(iv, coarse, 0.5f);
           const vec3 o = view.volume.index_from_world(ray.origin);
