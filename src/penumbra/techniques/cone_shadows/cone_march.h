@@ -1,6 +1,7 @@
 #pragma once
 // The cone-shadows kernel: optical depth along a cone of growing cubes.
 #include "penumbra/base/ray.h"
+#include "penumbra/render/lighting.h"
 #include "penumbra/scene/light.h"
 #include "penumbra/techniques/sat_common/cartesian_table_grid.h"
 #include "penumbra/techniques/sat_common/summed_area_table.h"
@@ -45,9 +46,16 @@ struct CachedConeMarch {
   ConeMarch direct;
   const VolumeView* caches = nullptr;  // per light; data == nullptr: no cache
   PENUMBRA_HD vec3 operator()(int light, vec3 p, const LightSample& ls) const {
-    if (caches[light].data && direct.box.contains(p)) return vec3(caches[light].sample(p));
-    return direct(light, p, ls);
+    return lanes<ScalarLanes>(light, p, ls, true);
+  }
+  template <class L>
+  PENUMBRA_HD typename L::Vec3 lanes(int light, const typename L::Vec3& p, const LightSampleL<L>& ls,
+                                     typename L::Mask active) const {
+    return cached_visibility<L>(caches[light], direct.box, direct, light, p, ls, active);
   }
 };
+
+PENUMBRA_PACKET_LIGHTING(ScatteringLighting<ConeMarch>);
+PENUMBRA_PACKET_LIGHTING(ScatteringLighting<CachedConeMarch>);
 
 }  // namespace penumbra

@@ -17,6 +17,7 @@
 // tests "stored depth > sample depth". Each test is an unbiased Bernoulli
 // estimate of the transmittance of its texel's ray at that depth, so the
 // expected visibility is the transmittance averaged over the m texels.
+#include "penumbra/render/lighting.h"
 #include "penumbra/base/rng.h"
 #include "penumbra/techniques/cssm/cssm_offsets.h"
 #include "penumbra/techniques/light_space/light_map.h"
@@ -86,23 +87,34 @@ struct CssmVisibility {
     return offsets[j] * (float(map.projection.resolution) / kCssmOffsetResolution);
   }
 
-  PENUMBRA_HD vec3 operator()(int light, vec3 p, const LightSample&) const {
+  PENUMBRA_HD vec3 operator()(int light, vec3 p, const LightSample& ls) const {
+    return lanes<ScalarLanes>(light, p, ls, true);
+  }
+
+  template <class L>
+  PENUMBRA_HD typename L::Vec3 lanes(int light, const typename L::Vec3& p, const LightSampleL<L>& ls,
+                                     typename L::Mask active) const {
+    using F = typename L::Float;
+    using X = typename L::Index;
+    using V = typename L::Vec3;
     const LightMapView& map = maps[light];
-    LightMapPoint q;
-    if (!map.projection.locate(p, q)) return vec3(1.0f);
-    vec3 lit(0.0f);
-    for (int j = 0; j < offset_count; ++j) {
-      const vec2 t = glm::floor(q.texel + offset(map, j));
-      const float* depth = map.texel(q.face, int(t.x), int(t.y));
-      if (!depth) {
-        lit += 1.0f;
-        continue;
-      }
-      lit.r += depth[0] > q.depth ? 1.0f : 0.0f;
-      lit.g += depth[1] > q.depth ? 1.0f : 0.0f;
-      lit.b += depth[2] > q.depth ? 1.0f : 0.0f;
+    if constexpr (L::kWidth > 1) {
+      if (!map.fits_packets()) return L::scalarize(*this, light, p, ls, active);
     }
-    return lit / float(offset_count);
+    LightMapPointL<L> q;
+    const auto seen = map.projection.locate<L>(p, q);
+    if (none(seen)) return V(1.0f);
+    V lit(0.0f);
+    for (int j = 0; j < offset_count; ++j) {
+      const vec2 o = offset(map, j);
+      typename L::Mask inside;
+      const X at = map.texel_offset<L>(q.face, to_int(floor(q.x + o.x)), to_int(floor(q.y + o.y)), inside);
+      const auto in_front = [&](int channel) {
+        return select((!inside) | (gather(map.texels, at + X(channel)) > q.depth), F(1.0f), F(0.0f));
+      };
+      lit += V(in_front(0), in_front(1), in_front(2));
+    }
+    return select(seen, lit / float(offset_count), V(1.0f));
   }
 };
 
@@ -112,5 +124,7 @@ inline CssmVisibility make_cssm_visibility(const LightMapView* maps, int count, 
   for (int j = 0; j < count; ++j) v.offsets[j] = scale * vec2(float(kCssmOffsets[j][0]), float(kCssmOffsets[j][1]));
   return v;
 }
+
+PENUMBRA_PACKET_LIGHTING(ScatteringLighting<CssmVisibility>);
 
 }  // namespace penumbra

@@ -37,6 +37,7 @@
 // by that change. The levels are updated
 // together, lane by lane in fixed-size arrays that the compiler vectorises;
 // only node placements (rare) take a per-level branch.
+#include "penumbra/base/lanes.h"
 #include "penumbra/base/math.h"
 
 namespace penumbra {
@@ -234,23 +235,32 @@ class DeepShadowCompressor {
 // Evaluates nodes (depth ascending; unused ones at +inf depth) at depth z:
 // constant before the first and after the last, linear between, clamped to
 // [0, 1] (node values may lie slightly outside it, see add()).
-PENUMBRA_HD inline vec3 evaluate_deep_shadow(const float* texel, int node_count, float z) {
-  // texel: node_count * (depth, r, g, b)
-  const float* a = texel;
-  vec3 value(a[1], a[2], a[3]);
-  if (z > a[0]) {
-    for (int k = 1; k < node_count; ++k) {
-      const float* b = texel + 4 * k;
-      if (z < b[0]) {
-        const float f = (z - a[0]) / (b[0] - a[0]);  // 0 toward an unused node at +inf
-        value += f * (vec3(b[1], b[2], b[3]) - value);
-        break;
-      }
-      a = b;
-      value = vec3(a[1], a[2], a[3]);
-    }
+template <class L>
+PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Vec3 evaluate_deep_shadow(const float* texels, typename L::Index texel,
+                                                                        int node_count, typename L::Float z) {
+  // texels + texel: node_count * (depth, r, g, b), per lane
+  using F = typename L::Float;
+  using V = typename L::Vec3;
+  using X = typename L::Index;
+  const auto node = [&](int k, int c) { return gather(texels, texel + X(4 * k + c)); };
+  F depth = node(0, 0);
+  V value(node(0, 1), node(0, 2), node(0, 3));
+  auto open = z > depth;  // lanes still looking for the node after z
+  for (int k = 1; k < node_count && any(open); ++k) {
+    const F next = node(k, 0);
+    const V next_value(node(k, 1), node(k, 2), node(k, 3));
+    const auto between = open & (z < next);
+    const F f = (z - depth) / (next - depth);  // 0 toward an unused node at +inf
+    value = select(between, value + f * (next_value - value), value);
+    open = open & !between;
+    depth = select(open, next, depth);
+    value = select(open, next_value, value);
   }
-  return glm::clamp(value, vec3(0.0f), vec3(1.0f));
+  return clamp(value, V(0.0f), V(1.0f));
+}
+
+PENUMBRA_HD inline vec3 evaluate_deep_shadow(const float* texel, int node_count, float z) {
+  return evaluate_deep_shadow<ScalarLanes>(texel, 0, node_count, z);
 }
 
 }  // namespace penumbra

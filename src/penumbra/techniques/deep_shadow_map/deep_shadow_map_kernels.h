@@ -2,6 +2,7 @@
 // deep-shadow-map kernels: a texel stores N nodes (depth, r, g, b) of its
 // light ray's compressed transmittance; a lookup evaluates them at the
 // sample's depth.
+#include "penumbra/render/lighting.h"
 #include "penumbra/techniques/deep_shadow_map/deep_shadow_compression.h"
 #include "penumbra/techniques/light_space/light_map.h"
 #include "penumbra/techniques/light_space/light_ray.h"
@@ -66,26 +67,51 @@ struct DeepShadowVisibility {
   int node_count;
   bool bilinear;
 
-  PENUMBRA_HD vec3 texel_value(const LightMapView& map, int face, int x, int y, float depth) const {
-    const float* texel = map.texel(face, x, y);
-    return texel ? evaluate_deep_shadow(texel, node_count, depth) : vec3(1.0f);
+  // The function of texel (x, y) of `face` at `depth`; lit outside the map.
+  template <class L>
+  PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Vec3 texel_value(const LightMapView& map, typename L::Int face,
+                                                                 typename L::Int x, typename L::Int y,
+                                                                 typename L::Float depth) const {
+    typename L::Mask inside;
+    const auto at = map.texel_offset<L>(face, x, y, inside);
+    using V = typename L::Vec3;
+    return select(inside, evaluate_deep_shadow<L>(map.texels, at, node_count, depth), V(1.0f));
   }
 
-  PENUMBRA_HD vec3 operator()(int light, vec3 p, const LightSample&) const {
+  PENUMBRA_HD vec3 operator()(int light, vec3 p, const LightSample& ls) const {
+    return lanes<ScalarLanes>(light, p, ls, true);
+  }
+
+  template <class L>
+  PENUMBRA_HD typename L::Vec3 lanes(int light, const typename L::Vec3& p, const LightSampleL<L>& ls,
+                                     typename L::Mask active) const {
+    using F = typename L::Float;
+    using I = typename L::Int;
+    using V = typename L::Vec3;
     const LightMapView& map = maps[light];
-    LightMapPoint q;
-    if (!map.projection.locate(p, q)) return vec3(1.0f);
-    if (!bilinear) return texel_value(map, q.face, int(glm::floor(q.texel.x)), int(glm::floor(q.texel.y)), q.depth);
-    const vec2 c = q.texel - 0.5f;
-    const vec2 base = glm::floor(c);
-    const vec2 f = c - base;
-    const int x = int(base.x), y = int(base.y);
-    const vec3 top =
-        glm::mix(texel_value(map, q.face, x, y, q.depth), texel_value(map, q.face, x + 1, y, q.depth), f.x);
-    const vec3 bottom =
-        glm::mix(texel_value(map, q.face, x, y + 1, q.depth), texel_value(map, q.face, x + 1, y + 1, q.depth), f.x);
-    return glm::mix(top, bottom, f.y);
+    if constexpr (L::kWidth > 1) {
+      if (!map.fits_packets()) return L::scalarize(*this, light, p, ls, active);
+    }
+    LightMapPointL<L> q;
+    const auto seen = map.projection.locate<L>(p, q);
+    if (none(seen)) return V(1.0f);
+    if (!bilinear) {
+      return select(seen, texel_value<L>(map, q.face, to_int(floor(q.x)), to_int(floor(q.y)), q.depth), V(1.0f));
+    }
+    const F cx = q.x - 0.5f, cy = q.y - 0.5f;
+    const F bx = floor(cx), by = floor(cy);
+    const F fx = cx - bx, fy = cy - by;
+    const I x = to_int(bx), y = to_int(by);
+    const V v00 = texel_value<L>(map, q.face, x, y, q.depth);
+    const V v10 = texel_value<L>(map, q.face, x + I(1), y, q.depth);
+    const V v01 = texel_value<L>(map, q.face, x, y + I(1), q.depth);
+    const V v11 = texel_value<L>(map, q.face, x + I(1), y + I(1), q.depth);
+    const V top = v00 * (1.0f - fx) + v10 * fx;
+    const V bottom = v01 * (1.0f - fx) + v11 * fx;
+    return select(seen, top * (1.0f - fy) + bottom * fy, V(1.0f));
   }
 };
+
+PENUMBRA_PACKET_LIGHTING(ScatteringLighting<DeepShadowVisibility>);
 
 }  // namespace penumbra

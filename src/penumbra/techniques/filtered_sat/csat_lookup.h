@@ -17,7 +17,7 @@ namespace penumbra {
 // The lookup with the light along grid axis Axis (a compile-time index, so
 // that the coordinates stay in registers); q: the sample in grid coordinates.
 template <int Axis>
-PENUMBRA_HD inline float csat_filtered_depth_along(const SummedAreaTableView& table, const CartesianTableGrid& grid,
+PENUMBRA_HD PENUMBRA_FORCE_INLINE float csat_filtered_depth_along(const SummedAreaTableView& table, const CartesianTableGrid& grid,
                                                    float sign, const ShadowFilter& filter, vec3 q) {
   constexpr int kA = Axis == 0 ? 1 : 0;
   constexpr int kB = Axis == 2 ? 1 : 2;
@@ -28,7 +28,7 @@ PENUMBRA_HD inline float csat_filtered_depth_along(const SummedAreaTableView& ta
   if (!(w1 > w0)) return 0.0f;  // beyond the table on the light side: nothing in between
   const float half = filter.half_width / grid.cell;
   // column(a, b): the extinction integral over [0, a] x [0, b] x [w0, w1].
-  auto column = [&](float a, float b) {
+  auto column = [&](float a, float b) PENUMBRA_FORCE_INLINE_LAMBDA {
     vec3 c(0.0f);
     c[kA] = a;
     c[kB] = b;

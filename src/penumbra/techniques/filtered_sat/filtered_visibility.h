@@ -2,6 +2,7 @@
 // filtered-sat's light visibility for ScatteringLighting: the transmittance
 // exp(-density_scale * filtered optical depth), from the tables per sample
 // or from the per-light shadow cache inside the volume box (Algorithm 1).
+#include "penumbra/render/lighting.h"
 #include "penumbra/scene/light.h"
 #include "penumbra/techniques/filtered_sat/light_tables.h"
 #include "penumbra/volume/volume_view.h"
@@ -25,9 +26,16 @@ struct CachedFilteredVisibility {
   Box3 box;
 
   PENUMBRA_HD vec3 operator()(int light, vec3 p, const LightSample& ls) const {
-    if (caches[light].data && box.contains(p)) return vec3(caches[light].sample(p));
-    return direct(light, p, ls);
+    return lanes<ScalarLanes>(light, p, ls, true);
+  }
+  template <class L>
+  PENUMBRA_HD typename L::Vec3 lanes(int light, const typename L::Vec3& p, const LightSampleL<L>& ls,
+                                     typename L::Mask active) const {
+    return cached_visibility<L>(caches[light], box, direct, light, p, ls, active);
   }
 };
+
+PENUMBRA_PACKET_LIGHTING(ScatteringLighting<FilteredVisibility>);
+PENUMBRA_PACKET_LIGHTING(ScatteringLighting<CachedFilteredVisibility>);
 
 }  // namespace penumbra

@@ -30,6 +30,33 @@ struct LightMapView {
     }
     return texels + (projection.texels_per_face() * face + std::int64_t(y) * n + x) * values_per_texel;
   }
+
+  // The same per lane (base/lanes.h): the offset of the texel's first value
+  // in `texels`, and in `inside` whether the map has that texel (0 is
+  // returned where it has not, a safe place to read).
+  template <class L>
+  PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Index texel_offset(typename L::Int face, typename L::Int x,
+                                                                   typename L::Int y,
+                                                                   typename L::Mask& inside) const {
+    using I = typename L::Int;
+    using X = typename L::Index;
+    const int n = projection.resolution;
+    if (projection.face_count == 6) {
+      x = max(I(0), min(x, I(n - 1)));
+      y = max(I(0), min(y, I(n - 1)));
+      inside = typename L::Mask(true);
+    } else {
+      inside = (x >= I(0)) & (y >= I(0)) & (x < I(n)) & (y < I(n));
+      x = select(inside, x, I(0));
+      y = select(inside, y, I(0));
+    }
+    return (X(face) * X(projection.texels_per_face()) + X(y) * X(n) + X(x)) * X(values_per_texel);
+  }
+
+  // Whether packet offsets (32-bit) reach every value of the map.
+  PENUMBRA_HD bool fits_packets() const {
+    return projection.texel_count() * values_per_texel < (std::int64_t(1) << 31);
+  }
 };
 
 class LightMap {

@@ -18,6 +18,7 @@
 // units. The window covers the whole box (with a margin of a few texels), so
 // a point outside the window of a single-face map sees no volume toward the
 // light: such lookups count as lit.
+#include "penumbra/base/lanes.h"
 #include "penumbra/base/math.h"
 #include "penumbra/base/ray.h"
 #include "penumbra/scene/light.h"
@@ -40,6 +41,12 @@ struct LightMapPoint {
   int face = 0;
   vec2 texel{0.0f};
   float depth = 0.0f;
+};
+
+template <class L> struct LightMapPointL {
+  typename L::Int face;
+  typename L::Float x, y;  // continuous texel coordinates
+  typename L::Float depth;
 };
 
 struct LightProjection {
@@ -74,28 +81,54 @@ struct LightProjection {
   // Where p falls in the map. False when the map cannot see p (no map, or p
   // behind a perspective light): such points are lit.
   PENUMBRA_HD bool locate(vec3 p, LightMapPoint& out) const {
-    const vec3 d = p - origin;
+    LightMapPointL<ScalarLanes> q;
+    if (!locate<ScalarLanes>(p, q)) return false;
+    out.face = q.face;
+    out.texel = vec2(q.x, q.y);
+    out.depth = q.depth;
+    return true;
+  }
+
+  // The same for one point or a packet of them (base/lanes.h): the lanes
+  // that the map sees. A cube map's lanes may fall on different faces.
+  template <class L>
+  PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Mask locate(const typename L::Vec3& p, LightMapPointL<L>& out) const {
+    using F = typename L::Float;
+    using I = typename L::Int;
+    using V = typename L::Vec3;
+    using M = typename L::Mask;
+    const V d = p - V(origin);
+    const float scale = 0.5f * float(resolution);
     if (kind == LightProjectionKind::Orthographic) {
       const LightFace& f = faces[0];
-      out.face = 0;
-      out.texel = texel_from_window(vec2(glm::dot(d, f.u), glm::dot(d, f.v)));
-      out.depth = glm::dot(d, f.w);
-      return true;
+      out.face = I(0);
+      out.x = ((dot(d, V(f.u)) - window_center.x) / window_half + 1.0f) * scale;
+      out.y = ((dot(d, V(f.v)) - window_center.y) / window_half + 1.0f) * scale;
+      out.depth = dot(d, V(f.w));
+      return M(true);
     }
-    if (kind != LightProjectionKind::Perspective) return false;
-    int face = 0;
+    if (kind != LightProjectionKind::Perspective) return M(false);
+    V u(faces[0].u), v(faces[0].v), w(faces[0].w);
+    out.face = I(0);
     if (face_count == 6) {
-      const vec3 a = glm::abs(d);
-      const int axis = a.x >= a.y ? (a.x >= a.z ? 0 : 2) : (a.y >= a.z ? 1 : 2);
-      face = 2 * axis + (d[axis] < 0.0f ? 1 : 0);
+      // The face of the dominant axis, its frame gathered per lane.
+      const F ax = max(d.x, -d.x), ay = max(d.y, -d.y), az = max(d.z, -d.z);
+      const I axis = select(ax >= ay, select(ax >= az, I(0), I(2)), select(ay >= az, I(1), I(2)));
+      const F along = select(axis == I(0), d.x, select(axis == I(1), d.y, d.z));
+      out.face = axis * 2 + select(along < 0.0f, I(1), I(0));
+      const float* frames = &faces[0].u.x;  // 9 floats per face
+      const typename L::Index base = typename L::Index(out.face) * 9;
+      u = V(gather(frames, base), gather(frames, base + 1), gather(frames, base + 2));
+      v = V(gather(frames, base + 3), gather(frames, base + 4), gather(frames, base + 5));
+      w = V(gather(frames, base + 6), gather(frames, base + 7), gather(frames, base + 8));
     }
-    const LightFace& f = faces[face];
-    const float dw = glm::dot(d, f.w);
-    if (!(dw > 0.0f)) return false;
-    out.face = face;
-    out.texel = texel_from_window(vec2(glm::dot(d, f.u), glm::dot(d, f.v)) / dw);
-    out.depth = glm::length(d);
-    return true;
+    const F dw = dot(d, w);
+    const M seen = dw > 0.0f;
+    if (none(seen)) return seen;
+    out.x = ((dot(d, u) / dw - window_center.x) / window_half + 1.0f) * scale;
+    out.y = ((dot(d, v) / dw - window_center.y) / window_half + 1.0f) * scale;
+    out.depth = length(d);
+    return seen;
   }
 };
 

@@ -1,5 +1,6 @@
 #pragma once
 // The sat-ao kernel: occlusion from the mean extinction around a point.
+#include "penumbra/render/lighting.h"
 #include "penumbra/scene/light.h"
 #include "penumbra/techniques/sat_common/cartesian_table_grid.h"
 #include "penumbra/techniques/sat_common/summed_area_table.h"
@@ -31,9 +32,16 @@ struct CachedAmbientOcclusion {
   VolumeView cache;
   Box3 box;
   PENUMBRA_HD vec3 operator()(int light, vec3 p, const LightSample& ls) const {
-    if (box.contains(p)) return vec3(cache.sample(p));
-    return direct(light, p, ls);
+    return lanes<ScalarLanes>(light, p, ls, true);
+  }
+  template <class L>
+  PENUMBRA_HD typename L::Vec3 lanes(int light, const typename L::Vec3& p, const LightSampleL<L>& ls,
+                                     typename L::Mask active) const {
+    return cached_visibility<L>(cache, box, direct, light, p, ls, active);
   }
 };
+
+PENUMBRA_PACKET_LIGHTING(ScatteringLighting<AmbientOcclusion>);
+PENUMBRA_PACKET_LIGHTING(ScatteringLighting<CachedAmbientOcclusion>);
 
 }  // namespace penumbra

@@ -53,7 +53,7 @@ struct SummedAreaTableView {
   // [0, q] on the other two axes and [lo, hi] on Axis. The interpolation
   // across the other two axes is shared by both ends (16 node reads instead
   // of 2 x 8, and half the arithmetic).
-  template <int Axis> PENUMBRA_HD double prefix_difference(vec3 q, float lo, float hi) const {
+  template <int Axis> PENUMBRA_HD PENUMBRA_FORCE_INLINE double prefix_difference(vec3 q, float lo, float hi) const {
     constexpr int kA = Axis == 0 ? 1 : 0;
     constexpr int kB = Axis == 2 ? 1 : 2;
     const std::int64_t stride[3] = {1, std::int64_t(cells.x) + 1, (std::int64_t(cells.x) + 1) * (cells.y + 1)};
@@ -78,7 +78,7 @@ struct SummedAreaTableView {
   }
 
   // Sum over the box [lo, hi] (grid coordinates); 0 for an empty box.
-  PENUMBRA_HD double box_sum(vec3 lo, vec3 hi) const {
+  PENUMBRA_HD PENUMBRA_FORCE_INLINE double box_sum(vec3 lo, vec3 hi) const {
     if (!(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z)) return 0.0;
     return prefix_difference<2>(hi, lo.z, hi.z) - prefix_difference<2>(vec3(lo.x, hi.y, 0.0f), lo.z, hi.z) -
            prefix_difference<2>(vec3(hi.x, lo.y, 0.0f), lo.z, hi.z) + prefix_difference<2>(lo, lo.z, hi.z);

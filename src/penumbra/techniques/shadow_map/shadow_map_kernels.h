@@ -1,5 +1,6 @@
 #pragma once
 // shadow-map kernels: one depth per texel, a binary depth test per lookup.
+#include "penumbra/render/lighting.h"
 #include "penumbra/techniques/light_space/light_map.h"
 #include "penumbra/techniques/light_space/light_ray.h"
 
@@ -39,34 +40,48 @@ inline LightMap build_shadow_map(const RenderView& v, const LightProjection& p, 
   return map;
 }
 
-// The binary test at one texel: lit when the point lies in front of the
-// stored depth (plus a bias against self-shadowing). Outside the map: lit.
-PENUMBRA_HD inline float shadow_map_test(const LightMapView& map, int face, int x, int y, float depth, float bias) {
-  const float* stored = map.texel(face, x, y);
-  return (!stored || depth < stored[0] + bias) ? 1.0f : 0.0f;
-}
-
 // Visibility toward light `light` with percentage-closer filtering over
-// (2 r + 1)^2 texels around the nearest one (r = 0: the plain binary test).
+// (2 r + 1)^2 texels around the nearest one (r = 0: the plain binary test):
+// a texel lights the point when the point lies in front of its stored depth
+// plus a bias against self-shadowing; outside the map: lit.
 struct ShadowMapVisibility {
   const LightMapView* maps;
   int pcf_radius;
   float bias;  // world units
 
-  PENUMBRA_HD vec3 operator()(int light, vec3 p, const LightSample&) const {
+  PENUMBRA_HD vec3 operator()(int light, vec3 p, const LightSample& ls) const {
+    return lanes<ScalarLanes>(light, p, ls, true);
+  }
+
+  template <class L>
+  PENUMBRA_HD typename L::Vec3 lanes(int light, const typename L::Vec3& p, const LightSampleL<L>& ls,
+                                     typename L::Mask active) const {
+    using F = typename L::Float;
+    using I = typename L::Int;
+    using M = typename L::Mask;
     const LightMapView& map = maps[light];
-    LightMapPoint q;
-    if (!map.projection.locate(p, q)) return vec3(1.0f);
-    const int x = int(glm::floor(q.texel.x));
-    const int y = int(glm::floor(q.texel.y));
-    float lit = 0.0f;
+    if constexpr (L::kWidth > 1) {
+      if (!map.fits_packets()) return L::scalarize(*this, light, p, ls, active);
+    }
+    LightMapPointL<L> q;
+    const M seen = map.projection.locate<L>(p, q);
+    if (none(seen)) return typename L::Vec3(1.0f);
+    const I x = to_int(floor(q.x));
+    const I y = to_int(floor(q.y));
+    F lit(0.0f);
     for (int dy = -pcf_radius; dy <= pcf_radius; ++dy) {
-      for (int dx = -pcf_radius; dx <= pcf_radius; ++dx)
-        lit += shadow_map_test(map, q.face, x + dx, y + dy, q.depth, bias);
+      for (int dx = -pcf_radius; dx <= pcf_radius; ++dx) {
+        M inside;
+        const auto at = map.texel_offset<L>(q.face, x + I(dx), y + I(dy), inside);
+        const F stored = gather(map.texels, at);
+        lit += select((!inside) | (q.depth < stored + bias), F(1.0f), F(0.0f));
+      }
     }
     const int side = 2 * pcf_radius + 1;
-    return vec3(lit / float(side * side));
+    return typename L::Vec3(select(seen, lit / float(side * side), F(1.0f)));
   }
 };
+
+PENUMBRA_PACKET_LIGHTING(ScatteringLighting<ShadowMapVisibility>);
 
 }  // namespace penumbra

@@ -1,33 +1,14 @@
 #include "penumbra/techniques/shadow_rays/shadow_rays.h"
 
-#include "penumbra/render/lighting.h"
+#include "penumbra/render/render_lit.h"
 #include "penumbra/render/scene_resources.h"
 #include "penumbra/techniques/shadow_rays/shadow_cache.h"
+#include "penumbra/techniques/shadow_rays/shadow_ray_visibility.h"
 
 #include <vector>
 
 namespace penumbra {
 namespace {
-
-template <class Sampler> struct ShadowRayVisibility {
-  const RenderView* view;
-  Sampler sampler;
-  float density_scale;
-  PENUMBRA_HD vec3 operator()(int, vec3 p, const LightSample& ls) const {
-    RayStats unused;
-    return vec3(march_transmittance(*view, sampler, Ray{p, ls.to_light}, ls.distance, density_scale, unused));
-  }
-};
-
-// Cache lookups inside the volume box; shadow rays outside it (plane hits).
-template <class Sampler> struct CachedVisibility {
-  ShadowRayVisibility<Sampler> rays;
-  const VolumeView* caches;
-  PENUMBRA_HD vec3 operator()(int light, vec3 p, const LightSample& ls) const {
-    if (rays.view->box.contains(p)) return vec3(caches[light].sample(p));
-    return rays(light, p, ls);
-  }
-};
 
 class ShadowRays final : public Technique {
  public:
@@ -61,24 +42,11 @@ class ShadowRays final : public Technique {
     const RenderView view = resources_.view(scene);
     const RenderView shadows = resources_.shadow_view(scene);
     const Shading shading = scene.material().shading;
+    const ShadowRayVisibility rays{&shadows, density_scale_};
     if (use_cache_) {
-      render_image(
-          view,
-          [&](const auto& sampler) {
-            using Rays = ShadowRayVisibility<std::decay_t<decltype(sampler)>>;
-            using Cached = CachedVisibility<std::decay_t<decltype(sampler)>>;
-            return ScatteringLighting<Cached>{
-                &view, Cached{Rays{&shadows, sampler, density_scale_}, cache_views_.data()}, shading};
-          },
-          image, stats);
+      render_lit(view, CachedShadowRayVisibility{rays, cache_views_.data()}, shading, image, stats);
     } else {
-      render_image(
-          view,
-          [&](const auto& sampler) {
-            using Rays = ShadowRayVisibility<std::decay_t<decltype(sampler)>>;
-            return ScatteringLighting<Rays>{&view, Rays{&shadows, sampler, density_scale_}, shading};
-          },
-          image, stats);
+      render_lit(view, rays, shading, image, stats);
     }
   }
 

@@ -1,0 +1,57 @@
+#pragma once
+// shadow-rays' light visibility for ScatteringLighting: a shadow ray marched
+// from the sample to the light (march_transmittance), or the per-light
+// shadow cache inside the volume box. Both are written once over the lane
+// type: a packet marches its lanes' shadow rays together.
+#include "penumbra/render/lighting.h"
+#include "penumbra/render/march.h"
+#include "penumbra/volume/volume_sampler.h"
+
+namespace penumbra {
+
+struct ShadowRayVisibility {
+  const RenderView* view;  // the shadow view (shadow TF, its majorants)
+  float density_scale;
+
+  PENUMBRA_HD vec3 operator()(int, vec3 p, const LightSample& ls) const {
+    RayStats unused;
+    return vec3(march_transmittance(*view, Ray{p, ls.to_light}, ls.distance, density_scale, unused));
+  }
+
+  template <class L>
+  PENUMBRA_HD typename L::Vec3 lanes(int, const typename L::Vec3& p, const LightSampleL<L>& ls,
+                                     typename L::Mask active) const {
+    constexpr int W = L::kWidth;
+    vec3 origins[W], directions[W];
+    unpack_lanes<L>(p, origins);
+    unpack_lanes<L>(ls.to_light, directions);
+    Ray rays[W];
+    float distances[W];
+    L::store(ls.distance, distances);
+    for (int i = 0; i < W; ++i) rays[i] = Ray{origins[i], directions[i]};
+    const AnyVoxelSampler sampler(view->volume.data, view->volume.dims, view->volume.type);
+    RayStats unused;
+    return typename L::Vec3(
+        march_transmittance<L>(*view, sampler, rays, distances, density_scale, active, unused));
+  }
+};
+
+// Cache lookups inside the volume box; shadow rays outside it (plane hits).
+struct CachedShadowRayVisibility {
+  ShadowRayVisibility rays;
+  const VolumeView* caches;  // per light
+
+  PENUMBRA_HD vec3 operator()(int light, vec3 p, const LightSample& ls) const {
+    return lanes<ScalarLanes>(light, p, ls, true);
+  }
+  template <class L>
+  PENUMBRA_HD typename L::Vec3 lanes(int light, const typename L::Vec3& p, const LightSampleL<L>& ls,
+                                     typename L::Mask active) const {
+    return cached_visibility<L>(caches[light], rays.view->box, rays, light, p, ls, active);
+  }
+};
+
+PENUMBRA_PACKET_LIGHTING(ScatteringLighting<ShadowRayVisibility>);
+PENUMBRA_PACKET_LIGHTING(ScatteringLighting<CachedShadowRayVisibility>);
+
+}  // namespace penumbra
