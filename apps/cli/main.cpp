@@ -1,6 +1,7 @@
 // penumbra: command-line front end. `penumbra --help` lists the subcommands.
 #include "commands.h"
 
+#include "penumbra/backends/cpu/packets.h"
 #include "penumbra/base/error.h"
 #include "penumbra/base/parallel.h"
 
@@ -8,13 +9,21 @@
 
 #include <cstdio>
 #include <exception>
+#include <string>
 
 int main(int argc, char** argv) {
   CLI::App app{"penumbra: direct volume rendering with advanced illumination"};
   app.require_subcommand(1);
   int threads = 0;
   app.add_option("--threads", threads, "worker threads (0 = all cores)")->check(CLI::NonNegativeNumber);
-  app.parse_complete_callback([&] { penumbra::set_thread_count(threads); });
+  std::string simd = "auto";
+  app.add_option("--simd", simd,
+                 "packet path of the shared marching loop: auto (the widest this CPU has), off (one ray at a time), "
+                 "avx2 (8 rays), avx512 (16 rays)");
+  app.parse_complete_callback([&] {
+    penumbra::set_thread_count(threads);
+    penumbra::set_simd_mode(penumbra::parse_simd_mode(simd));
+  });
   penumbra::cli::add_render_command(app);
   penumbra::cli::add_info_command(app);
   penumbra::cli::add_techniques_command(app);
