@@ -102,7 +102,8 @@ class Scene:
           size=(w, h), technique=..., step=..., params={...}, time_step=...)
 
     scene is a dict in scene JSON v1, the path of a scene file, or another
-    Scene; keywords replace its sections. Relative paths resolve against the
+    Scene; the keywords then update it as update() does (camera, material
+    and render merge the keys given). Relative paths resolve against the
     scene file's folder (for a dict: base_dir, default the current folder).
 
     volume: a penumbra.Volume, a numpy array (wrapped without a copy, see
@@ -124,25 +125,22 @@ class Scene:
     def __init__(self, scene: Any = None, *, base_dir: "str | os.PathLike[str] | None" = None, **keywords: Any):
         sections, memory_volume = sections_from_keywords(**keywords)
         if isinstance(scene, Scene):
-            self._handle = scene._handle.copy()
-            if sections or memory_volume is not None:
-                self._handle.update(sections, memory_volume)
+            handle = scene._handle.copy()
         elif isinstance(scene, _PathLike):
-            self._handle = _penumbra.SceneHandle.from_file(os.fspath(scene))
-            if sections or memory_volume is not None:
-                self._handle.update(sections, memory_volume)
+            handle = _penumbra.SceneHandle.from_file(os.fspath(scene))
         else:
             given = dict(scene or {})
-            given_volume, volume_object = _volume_section(given.pop("volume", None))
-            if given_volume is not None:
-                given["volume"] = given_volume
-            given.update(sections)
-            if memory_volume is None:
-                memory_volume = volume_object
-            if "volume" not in given and memory_volume is None:
+            section, volume = _volume_section(given.pop("volume", None))
+            if section is None:  # the volume comes from the keywords
+                section, volume, memory_volume = sections.pop("volume", None), memory_volume, None
+            if section is None and volume is None:
                 raise SceneError("volume", "missing: a scene needs a volume (a Volume, an array, a file or a builtin)")
+            given["volume"] = section or {}
             folder = os.fspath(base_dir) if base_dir is not None else os.getcwd()
-            self._handle = _penumbra.SceneHandle(given, folder, memory_volume)
+            handle = _penumbra.SceneHandle(given, folder, volume)
+        if sections or memory_volume is not None:
+            handle.update(sections, memory_volume)
+        self._handle = handle
 
     @classmethod
     def _wrap(cls, handle: _penumbra.SceneHandle) -> "Scene":

@@ -242,8 +242,9 @@ py::dict compare(const SceneHandle& scene, const std::vector<std::string>& names
   Comparison result;
   run_interruptible(progress, callback, [&] { result = compare_techniques(scene.scene(), request, {}, &progress); });
   const Scene& s = scene.scene();
-  return comparison_to_python(result, s.volume_source().file.empty() ? s.volume_source().builtin : s.volume_source().file,
-                              s.render().width, s.render().height);
+  const VolumeSource& source = s.volume_source();
+  const std::string name = !source.file.empty() ? source.file : !source.builtin.empty() ? source.builtin : "in-memory volume";
+  return comparison_to_python(result, name, s.render().width, s.render().height);
 }
 
 py::object default_to_python(const ParameterSpec& spec) { return parameter_to_python(spec.default_value, spec.type); }

@@ -18,7 +18,7 @@ constexpr const char* kMemoryVolumeFile = "<in-memory volume>";
 // Sections whose keys an update merges into the scene's (a camera eye alone
 // keeps the target); the others are replaced whole, as a scene file gives them.
 bool merges_keys(const std::string& section) {
-  return section == "camera" || section == "material" || section == "render" || section == "volume";
+  return section == "camera" || section == "material" || section == "render";
 }
 
 }  // namespace
@@ -87,8 +87,8 @@ std::vector<std::string> SceneHandle::update(const json& sections, std::shared_p
     if (name == "volume" && value.is_object()) names_volume_source = value.contains("file") || value.contains("builtin");
     if (value.is_null()) {
       next.erase(name);  // back to the default
-    } else if (merges_keys(name) && value.is_object() && next.contains(name) && next[name].is_object() &&
-               !(name == "volume" && names_volume_source)) {
+    } else if ((name == "volume" ? !names_volume_source : merges_keys(name)) && value.is_object() &&
+               next.contains(name) && next[name].is_object()) {
       for (const auto& field : value.items()) {
         if (field.value().is_null()) next[name].erase(field.key());
         else next[name][field.key()] = field.value();

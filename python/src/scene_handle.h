@@ -18,9 +18,12 @@ class SceneHandle {
   SceneHandle(const nlohmann::json& json, std::filesystem::path base_dir, std::shared_ptr<const Volume> volume);
 
   // Replaces the top-level sections given (scene JSON v1 keys) and changes
-  // only the parts of the scene whose sections differ. A `volume` replaces
-  // the in-memory volume (then sections' volume holds at most time_step).
-  // Returns the SceneVersions fields that moved, by name.
+  // only the parts of the scene whose sections differ. The keys of camera,
+  // material and render merge into the scene's, and so do those of a volume
+  // section that names no file or builtin (time_step alone); the other
+  // sections replace the scene's whole. A `volume` replaces the in-memory
+  // volume (then sections' volume holds at most time_step). Returns the
+  // SceneVersions fields that moved, by name.
   std::vector<std::string> update(const nlohmann::json& sections, std::shared_ptr<const Volume> volume);
 
   // Turns the camera about its target (Camera::orbit) as an update would.

@@ -43,6 +43,15 @@ def test_keywords_fill_the_sections():
     assert scene.size == (40, 30) and scene["camera"] == d["camera"]
 
 
+def test_keywords_update_a_scene_file_as_update_does():
+    scene = penumbra.Scene(SOURCE_DIR / "scenes" / "spheres.json", size=(40, 30), material={"ambient": 0.3})
+    d = scene.to_dict()
+    assert (d["render"]["width"], d["render"]["height"], d["render"]["step"]) == (40, 30, 0.5)
+    assert d["material"]["ambient"] == pytest.approx(0.3) and d["material"]["shading"] == "phase"
+    assert d["camera"]["eye"] == [110, -220, 120]  # the file's camera stays
+    assert d["volume"] == {"builtin": "spheres", "size": [96, 96, 96], "time_step": 0}
+
+
 def test_in_memory_volumes_round_trip_as_data():
     array = blob()
     scene = small_scene(volume=array)
