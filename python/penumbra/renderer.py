@@ -1,6 +1,7 @@
 """penumbra.Renderer and penumbra.compare: techniques over scenes."""
 from __future__ import annotations
 
+import warnings
 from typing import Any, Callable, Dict, Iterable, List, Optional
 
 import numpy as np
@@ -38,6 +39,10 @@ class Renderer:
         if not isinstance(scene, Scene):
             scene = Scene(scene)
         self._handle = _penumbra.RendererHandle(scene._handle, technique or "", params)
+        meshes = scene._handle.to_json().get("meshes")
+        if meshes and not _penumbra.technique(self.technique).draws_meshes:
+            warnings.warn(f"{self.technique} does not draw the scene's {len(meshes)} mesh(es); convolution does",
+                          stacklevel=2)
 
     def render(self, progress: Optional[ProgressCallback] = None) -> Image:
         """The scene as an (H, W, 4) float32 linear RGBA Image (alpha: the accumulated opacity).

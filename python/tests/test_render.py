@@ -5,6 +5,7 @@ import signal
 import subprocess
 import threading
 import time
+import warnings
 
 import numpy as np
 import pytest
@@ -83,6 +84,15 @@ def test_updates_rebuild_only_what_depends_on_the_change():
     renderer.render()
     assert renderer.stats["rebuilds"] == after_tf + 1  # the filter changes the cache, not the tables
     assert renderer.params["filter_voxels"] == 15
+
+
+def test_techniques_that_do_not_draw_meshes_say_so():
+    meshes = [{"builtin": "sphere", "scale": 8.0}]
+    with pytest.warns(UserWarning, match="does not draw"):
+        penumbra.Renderer(small_scene(meshes=meshes), "shadow-rays")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        penumbra.Renderer(small_scene(meshes=meshes), "convolution")
 
 
 def test_parameters_are_checked_and_named():
