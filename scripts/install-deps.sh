@@ -17,6 +17,7 @@ packages=(
   zlib1g-dev libpng-dev libopenexr-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libcpp-httplib-dev libjpeg-dev libhwy-dev
+  pybind11-dev python3-dev python3-numpy python3-pytest python3-setuptools
 )
 
 missing=()

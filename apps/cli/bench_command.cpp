@@ -9,10 +9,10 @@
 // and passes_per_frame (convolution's slabs; 0 for techniques that do not sweep).
 #include "cli_common.h"
 #include "commands.h"
-#include "timing.h"
 
 #include "penumbra/base/error.h"
 #include "penumbra/base/parallel.h"
+#include "penumbra/render/change_timing.h"
 #include "penumbra/techniques/registry.h"
 
 #include <fmt/format.h>

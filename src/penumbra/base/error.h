@@ -54,4 +54,11 @@ class OutOfMemoryBudget : public Error {
   std::uint64_t bytes_;
 };
 
+// A render stopped before it finished because its caller asked it to (see
+// RenderProgress in render/technique.h): Ctrl-C in Python, a closed viewer.
+class RenderCancelled : public Error {
+ public:
+  RenderCancelled() : Error("the render was cancelled") {}
+};
+
 }  // namespace penumbra

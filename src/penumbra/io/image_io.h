@@ -13,6 +13,8 @@
 namespace penumbra {
 
 void write_png(const std::filesystem::path& path, const Image& image);
+// The pixels such a PNG holds: 8-bit sRGB R, G, B per pixel, rows top first.
+std::vector<std::uint8_t> srgb8_pixels(const Image& image);
 // The same PNG bytes, in memory (for the HTTP server).
 std::vector<std::uint8_t> encode_png(const Image& image);
 // Decodes sRGB to linear; alpha is 1 unless the file has an alpha channel.

@@ -35,14 +35,7 @@ std::uint8_t encode_channel(float linear) {
 
 std::vector<std::uint8_t> rgb_bytes(const Image& image, const std::string& destination) {
   if (image.empty()) throw IoError(destination, "cannot write an empty (0 x 0) image as PNG");
-  std::vector<std::uint8_t> rgb(image.pixel_count() * 3);
-  for (std::size_t i = 0; i < image.pixel_count(); ++i) {
-    const vec4 p = image.data()[i];
-    rgb[3 * i + 0] = encode_channel(p.r);
-    rgb[3 * i + 1] = encode_channel(p.g);
-    rgb[3 * i + 2] = encode_channel(p.b);
-  }
-  return rgb;
+  return srgb8_pixels(image);
 }
 
 void prepare_write(PngImage& png, const Image& image) {
@@ -87,6 +80,17 @@ std::vector<std::uint8_t> encode_png_to(const Image& image, const std::string& d
 }
 
 }  // namespace
+
+std::vector<std::uint8_t> srgb8_pixels(const Image& image) {
+  std::vector<std::uint8_t> rgb(image.pixel_count() * 3);
+  for (std::size_t i = 0; i < image.pixel_count(); ++i) {
+    const vec4 p = image.data()[i];
+    rgb[3 * i + 0] = encode_channel(p.r);
+    rgb[3 * i + 1] = encode_channel(p.g);
+    rgb[3 * i + 2] = encode_channel(p.b);
+  }
+  return rgb;
+}
 
 std::vector<std::uint8_t> encode_png(const Image& image) { return encode_png_to(image, "<memory>"); }
 

@@ -9,12 +9,30 @@
 #include "penumbra/render/render_loop.h"
 #include "penumbra/scene/scene.h"
 
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
 
 namespace penumbra {
+
+// Shared between a thread that renders and one that watches it (the Python
+// bindings' progress callback and Ctrl-C check): the fraction of the frame
+// done so far, and a request to stop. Long renders (pathtrace) report and
+// stop between tiles, throwing RenderCancelled; the others finish their
+// frame, which is short.
+class RenderProgress {
+ public:
+  void report(double fraction) { fraction_.store(fraction, std::memory_order_relaxed); }
+  double fraction() const { return fraction_.load(std::memory_order_relaxed); }
+  void request_stop() { stop_.store(true, std::memory_order_relaxed); }
+  bool stop_requested() const { return stop_.load(std::memory_order_relaxed); }
+
+ private:
+  std::atomic<double> fraction_{0.0};
+  std::atomic<bool> stop_{false};
+};
 
 class Technique {
  public:
@@ -36,6 +54,14 @@ class Technique {
   // tests use it to check that only the changes a structure depends on
   // trigger a rebuild.
   virtual std::uint64_t rebuilds() const { return 0; }
+
+  // Where render() reports progress and looks for a request to stop;
+  // nullptr (the default) for neither. It must outlive the render calls.
+  void set_progress(RenderProgress* progress) { progress_ = progress; }
+  RenderProgress* progress() const { return progress_; }
+
+ private:
+  RenderProgress* progress_ = nullptr;
 };
 
 struct TechniqueInfo {

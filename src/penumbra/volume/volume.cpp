@@ -13,21 +13,44 @@
 
 namespace penumbra {
 
-Volume::Volume(ivec3 dims, VoxelType type, int frame_count) : dims_(dims), type_(type) {
+void Volume::check_dims(ivec3 dims, int frame_count) const {
   if (dims.x <= 0 || dims.y <= 0 || dims.z <= 0) {
     throw InvalidArgument("dims", fmt::format("volume dimensions must be positive, got {}x{}x{}", dims.x,
                                               dims.y, dims.z));
   }
   if (frame_count <= 0) throw InvalidArgument("frames", "a volume needs at least one frame");
+}
+
+Volume::Volume(ivec3 dims, VoxelType type, int frame_count) : dims_(dims), type_(type) {
+  check_dims(dims, frame_count);
   const std::uint64_t bytes = checked_product(
       {std::uint64_t(dims.x), std::uint64_t(dims.y), std::uint64_t(dims.z), voxel_size(type),
        std::uint64_t(frame_count)});
   check_memory_budget(fmt::format("a {}x{}x{} {} volume with {} frame(s)", dims.x, dims.y, dims.z,
                                   to_string(type), frame_count),
                       bytes);
-  frames_.reserve(static_cast<std::size_t>(frame_count));
-  for (int f = 0; f < frame_count; ++f) frames_.emplace_back(new std::byte[frame_bytes()]);
+  owned_.reserve(static_cast<std::size_t>(frame_count));
+  for (int f = 0; f < frame_count; ++f) {
+    owned_.emplace_back(new std::byte[frame_bytes()]);
+    frames_.push_back(owned_.back().get());
+  }
   center_at_origin();
+}
+
+Volume Volume::wrap(ivec3 dims, VoxelType type, int frame_count, const std::byte* data,
+                    std::shared_ptr<const void> owner) {
+  Volume v;
+  v.check_dims(dims, frame_count);
+  if (data == nullptr) throw InvalidArgument("data", "a wrapped volume needs its voxels");
+  v.dims_ = dims;
+  v.type_ = type;
+  // The engine reads wrapped memory only through const views; the pointer is
+  // stored without const so owned and wrapped frames share one table.
+  std::byte* first = const_cast<std::byte*>(data);
+  for (int f = 0; f < frame_count; ++f) v.frames_.push_back(first + std::uint64_t(f) * v.frame_bytes());
+  v.external_owner_ = owner ? std::move(owner) : std::make_shared<int>(0);
+  v.center_at_origin();
+  return v;
 }
 
 Volume::Volume(Volume&& other) noexcept { *this = std::move(other); }
@@ -40,6 +63,8 @@ Volume& Volume::operator=(Volume&& other) noexcept {
     spacing_ = other.spacing_;
     origin_ = other.origin_;
     frames_ = std::move(other.frames_);
+    owned_ = std::move(other.owned_);
+    external_owner_ = std::move(other.external_owner_);
     source_ = std::move(other.source_);
     ranges_stale_ = other.ranges_stale_;
     ranges_ = std::move(other.ranges_);
@@ -93,14 +118,22 @@ void Volume::check_type(VoxelType requested) const {
 
 std::byte* Volume::frame_data(int frame) {
   check_frame(frame);
+  if (wraps_external_memory()) {
+    throw InvalidArgument("volume", "the voxels of a wrapped volume are written by their owner, not through the volume");
+  }
   std::lock_guard lock(range_mutex_);
   ranges_stale_ = true;
-  return frames_[static_cast<std::size_t>(frame)].get();
+  return frames_[static_cast<std::size_t>(frame)];
 }
 
 const std::byte* Volume::frame_data(int frame) const {
   check_frame(frame);
-  return frames_[static_cast<std::size_t>(frame)].get();
+  return frames_[static_cast<std::size_t>(frame)];
+}
+
+void Volume::mark_modified() {
+  std::lock_guard lock(range_mutex_);
+  ranges_stale_ = true;
 }
 
 namespace {
@@ -158,7 +191,7 @@ void Volume::update_ranges() const {
   if (!ranges_stale_) return;
   ranges_.clear();
   for (int f = 0; f < frame_count(); ++f) {
-    const std::byte* bytes = frames_[static_cast<std::size_t>(f)].get();
+    const std::byte* bytes = frames_[static_cast<std::size_t>(f)];
     ranges_.push_back(visit_voxel_type(type_, [&](auto tag) {
       using T = decltype(tag);
       return compute_range(reinterpret_cast<const T*>(bytes), voxel_count());
@@ -198,7 +231,7 @@ float Volume::voxel(int frame, ivec3 index) const {
 VolumeView Volume::view(int frame) const {
   check_frame(frame);
   VolumeView v;
-  v.data = frames_[static_cast<std::size_t>(frame)].get();
+  v.data = frames_[static_cast<std::size_t>(frame)];
   v.type = type_;
   v.dims = dims_;
   v.spacing = spacing_;

@@ -1,6 +1,8 @@
 #pragma once
-// Volume: an owning grid of scalars of one voxel type, with spacing, origin and
-// one or more time steps (frames) that share the grid.
+// Volume: a grid of scalars of one voxel type, with spacing, origin and one or
+// more time steps (frames) that share the grid. It owns its voxels, or wraps
+// memory that lives elsewhere (a numpy array) and keeps that memory's owner
+// alive; either way the voxels of a frame are contiguous, x fastest.
 #include "penumbra/base/math.h"
 #include "penumbra/base/ray.h"
 #include "penumbra/volume/volume_view.h"
@@ -30,6 +32,16 @@ class Volume {
   // non-positive dims, spacing or frame count and OutOfMemoryBudget when too big.
   Volume(ivec3 dims, VoxelType type, int frame_count = 1);
 
+  // Wraps `frame_count` frames of voxels that start at `data` (frame f at
+  // data + f * frame_bytes()) without copying them. `owner` keeps that memory
+  // alive for as long as the volume exists. The memory is read-only through
+  // the volume: the non-const frame_data() throws. There is no room after the
+  // last voxel for padding (a reader of whole SIMD packets past the end must
+  // not be given a wrapped volume's memory). Throws InvalidArgument for
+  // non-positive dims or frame count or a null `data`.
+  static Volume wrap(ivec3 dims, VoxelType type, int frame_count, const std::byte* data,
+                     std::shared_ptr<const void> owner);
+
   Volume(const Volume&) = delete;
   Volume& operator=(const Volume&) = delete;
   Volume(Volume&&) noexcept;
@@ -53,7 +65,8 @@ class Volume {
   Box3 world_box() const;
 
   // Raw voxel bytes of one frame (x fastest, then y, then z). Writing through
-  // the non-const overload marks the value ranges stale.
+  // the non-const overload marks the value ranges stale; it throws
+  // InvalidArgument for a wrapped volume.
   std::byte* frame_data(int frame);
   const std::byte* frame_data(int frame) const;
 
@@ -70,6 +83,13 @@ class Volume {
   ValueRange value_range(int frame) const;
   ValueRange value_range() const;
 
+  // Whether the voxels live in memory the volume does not own (wrap()).
+  bool wraps_external_memory() const { return external_owner_ != nullptr; }
+  // After the wrapped memory was written by its owner: forgets the cached
+  // value ranges. (Scenes and techniques see new voxels only once the volume
+  // is set on the scene again, which moves the data version.)
+  void mark_modified();
+
   // Voxel values of one frame as float, for analysis and tests.
   float voxel(int frame, ivec3 index) const;
 
@@ -80,6 +100,8 @@ class Volume {
   void set_source(std::string source) { source_ = std::move(source); }
 
  private:
+  Volume() = default;
+  void check_dims(ivec3 dims, int frame_count) const;
   void check_frame(int frame) const;
   void check_type(VoxelType requested) const;
   void update_ranges() const;
@@ -88,7 +110,9 @@ class Volume {
   VoxelType type_ = VoxelType::UInt8;
   vec3 spacing_{1.0f};
   vec3 origin_{0.0f};
-  std::vector<std::unique_ptr<std::byte[]>> frames_;
+  std::vector<std::byte*> frames_;                   // where each frame starts
+  std::vector<std::unique_ptr<std::byte[]>> owned_;  // the frames, when the volume owns them
+  std::shared_ptr<const void> external_owner_;       // keeps wrapped memory alive
   std::string source_;
 
   mutable std::mutex range_mutex_;

@@ -6,6 +6,8 @@
 
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <vector>
 
 namespace penumbra {
 namespace {
@@ -64,6 +66,37 @@ TEST(Volume, FrameAccessChecksTheType) {
   EXPECT_THROW(v.frame_as<float>(0), InvalidArgument);
 }
 
+
+TEST(Volume, WrapReadsExternalFramesInPlaceAndKeepsTheirOwnerAlive) {
+  // Two 3x2x2 int16 frames in one buffer, values = index + 1000 * frame.
+  auto buffer = std::make_shared<std::vector<std::int16_t>>(24);
+  for (int i = 0; i < 24; ++i) (*buffer)[std::size_t(i)] = std::int16_t(i % 12 + 1000 * (i / 12));
+  std::weak_ptr<std::vector<std::int16_t>> alive = buffer;
+  const auto* bytes = reinterpret_cast<const std::byte*>(buffer->data());
+  auto v = std::make_shared<Volume>(Volume::wrap(ivec3(3, 2, 2), VoxelType::Int16, 2, bytes, buffer));
+  buffer.reset();
+  ASSERT_FALSE(alive.expired());  // the volume holds the owner
+  EXPECT_TRUE(v->wraps_external_memory());
+  EXPECT_EQ(v->frame_count(), 2);
+  const Volume& read = *v;
+  EXPECT_EQ(read.frame_data(1), read.frame_data(0) + 24);
+  // No copy: the views read the wrapped bytes themselves.
+  EXPECT_EQ(v->view(0).data, bytes);
+  EXPECT_EQ(v->view(1).data, bytes + 24);
+  EXPECT_FLOAT_EQ(v->voxel(1, ivec3(2, 1, 1)), 1011.0f);
+  EXPECT_FLOAT_EQ(v->value_range().max, 1011.0f);
+  EXPECT_FLOAT_EQ(v->world_box().center().x, 0.0f);
+  // The owner writes; the volume forgets its cached range once told.
+  alive.lock()->at(23) = 2000;
+  EXPECT_FLOAT_EQ(v->value_range().max, 1011.0f);
+  v->mark_modified();
+  EXPECT_FLOAT_EQ(v->value_range().max, 2000.0f);
+  EXPECT_THROW(v->frame_data(0), InvalidArgument);  // not writable through the volume
+  v.reset();
+  EXPECT_TRUE(alive.expired());
+  EXPECT_THROW(Volume::wrap(ivec3(0, 2, 2), VoxelType::UInt8, 1, bytes, nullptr), InvalidArgument);
+  EXPECT_THROW(Volume::wrap(ivec3(2), VoxelType::UInt8, 1, nullptr, nullptr), InvalidArgument);
+}
 TEST(VolumeView, TrilinearSamplingReproducesLinearFieldsAndVoxels) {
   const Volume v = linear_volume(ivec3(6, 7, 8), vec3(1.5f, -2.0f, 0.25f), 3.0f);
   const VolumeView view = v.view();

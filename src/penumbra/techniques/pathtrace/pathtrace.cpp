@@ -1,5 +1,6 @@
 #include "penumbra/techniques/pathtrace/pathtrace.h"
 
+#include "penumbra/base/error.h"
 #include "penumbra/base/memory_budget.h"
 #include "penumbra/base/parallel.h"
 #include "penumbra/render/scene_resources.h"
@@ -85,6 +86,7 @@ class PathTrace final : public Technique {
     estimate_ = PathTraceEstimate{};
 
     ProgressBar bar("pathtrace", progress_);
+    RenderProgress* watcher = progress();
     const double budget = double(pixels) * double(spp_);
     std::atomic<std::uint64_t> lookups{0};
     std::atomic<std::uint64_t> paths{0};
@@ -96,6 +98,7 @@ class PathTrace final : public Technique {
       while (taken < spp_) {
         const int target = taken == 0 ? std::min(spp_, min_spp_) : std::min(spp_, 2 * taken);
         parallel_for_tiles(width, height, 16, [&](int x0, int y0, int x1, int y1) {
+          if (watcher && watcher->stop_requested()) return;  // the tiles left are skipped
           std::uint64_t tile_lookups = 0;
           std::uint64_t tile_paths = 0;
           for (int y = y0; y < y1; ++y) {
@@ -116,7 +119,9 @@ class PathTrace final : public Technique {
           lookups.fetch_add(tile_lookups, std::memory_order_relaxed);
           const std::uint64_t done = paths.fetch_add(tile_paths, std::memory_order_relaxed) + tile_paths;
           bar.update((double(done) + double(skipped)) / budget);
+          if (watcher) watcher->report((double(done) + double(skipped)) / budget);
         });
+        if (watcher && watcher->stop_requested()) throw RenderCancelled();
         taken = target;
         ++estimate_.passes;
         if (target_error_ > 0.0 && taken >= min_spp_ && taken < spp_) {

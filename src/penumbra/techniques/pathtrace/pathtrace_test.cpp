@@ -361,3 +361,32 @@ TEST(PathTrace, AuxBytesAreTheAccumulators) {
 
 }  // namespace
 }  // namespace penumbra
+
+namespace penumbra {
+namespace {
+
+TEST(PathTrace, ReportsProgressAndStopsWhenAsked) {
+  const Scene scene = single_scattering_scene();
+  const TechniqueInfo& info = find_technique("pathtrace");
+  ParameterValues params(info.parameters);
+  params.set("spp", 4.0);
+  params.set("min_spp", 2.0);
+  auto t = info.create();
+  RenderProgress progress;
+  t->set_progress(&progress);
+  t->prepare(scene, params);
+  Image image;
+  t->render(scene, image);
+  EXPECT_DOUBLE_EQ(progress.fraction(), 1.0);  // every path of the budget taken
+  // A stop asked for before (or during) a render ends it with RenderCancelled
+  // after the current pass, with the tiles left untouched.
+  progress.request_stop();
+  RenderStats stats;
+  EXPECT_THROW(t->render(scene, image, &stats), RenderCancelled);
+  EXPECT_EQ(stats.rays, 0u);
+  t->set_progress(nullptr);
+  EXPECT_NO_THROW(t->render(scene, image));
+}
+
+}  // namespace
+}  // namespace penumbra

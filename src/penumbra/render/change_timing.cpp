@@ -1,9 +1,9 @@
-#include "timing.h"
+#include "penumbra/render/change_timing.h"
 
 #include <algorithm>
 #include <cmath>
 
-namespace penumbra::cli {
+namespace penumbra {
 namespace {
 
 std::vector<Light> moved_lights(const std::vector<Light>& lights, vec3 center, float degrees) {
@@ -56,4 +56,4 @@ ChangeTimings time_scene_changes(Technique& technique, Scene& scene, const Param
   return ChangeTimings{median(tf_ms), median(light_ms)};
 }
 
-}  // namespace penumbra::cli
+}  // namespace penumbra

@@ -1,7 +1,7 @@
 #pragma once
-// How `penumbra bench` and `penumbra compare` time the costs the papers
-// tabulate: a TF change and a light move (each the median of 3 prepare()
-// calls after the change) and frames.
+// How `penumbra bench`, `penumbra compare` and the Python bindings time the
+// costs the papers tabulate: a TF change and a light move (each the median of
+// 3 prepare() calls after the change) and frames.
 #include "penumbra/render/parameters.h"
 #include "penumbra/render/technique.h"
 #include "penumbra/scene/scene.h"
@@ -9,7 +9,7 @@
 #include <chrono>
 #include <vector>
 
-namespace penumbra::cli {
+namespace penumbra {
 
 using Clock = std::chrono::steady_clock;
 
@@ -26,4 +26,4 @@ struct ChangeTimings {
 // rounds each. Leaves `scene` with the changed TF and lights.
 ChangeTimings time_scene_changes(Technique& technique, Scene& scene, const ParameterValues& params);
 
-}  // namespace penumbra::cli
+}  // namespace penumbra
