@@ -59,7 +59,8 @@ json parse_body(const Request& req, bool allow_empty) {
   }
   try {
     return json::parse(req.body);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {
+    // parse_error, and out_of_range for a number beyond a double (1e400).
     throw HttpError(400, "body", fmt::format("not valid JSON: {}", e.what()));
   }
 }
