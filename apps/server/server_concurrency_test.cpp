@@ -20,6 +20,7 @@ using nlohmann::json;
 using testing::frame_body;
 using testing::small_scene;
 using testing::TestServer;
+using testing::expect_error;
 
 // Holds every job that starts on a render worker until released.
 class Gate {
@@ -152,6 +153,7 @@ TEST(ServerConcurrency, AFullQueueAnswers503AndRecovers) {
 TEST(ServerConcurrency, OldSessionsAreEvictedBeyondTheLimit) {
   ServerOptions options = TestServer::default_options();
   options.max_sessions = 2;
+  options.session_eviction_grace = std::chrono::seconds(0);
   TestServer server(options);
   const std::string a = server.create_session();
   const std::string b = server.create_session();
@@ -160,6 +162,23 @@ TEST(ServerConcurrency, OldSessionsAreEvictedBeyondTheLimit) {
   EXPECT_EQ(client.Get(("/api/sessions/" + a + "/scene").c_str())->status, 404);
   EXPECT_EQ(client.Get(("/api/sessions/" + b + "/scene").c_str())->status, 200);
   EXPECT_EQ(client.Get(("/api/sessions/" + c + "/scene").c_str())->status, 200);
+}
+
+TEST(ServerConcurrency, SessionsInUseAreNotEvictedToMakeRoom) {
+  ServerOptions options = TestServer::default_options();
+  options.max_sessions = 2;
+  options.session_eviction_grace = std::chrono::seconds(60);
+  TestServer server(options);
+  const std::string a = server.create_session();
+  const std::string b = server.create_session();
+  auto client = server.client();
+  const auto refused = client.Post("/api/sessions", "{}", "application/json");
+  expect_error(refused, 503, "session");
+  EXPECT_EQ(client.Get(("/api/sessions/" + a + "/scene").c_str())->status, 200);
+  EXPECT_EQ(client.Get(("/api/sessions/" + b + "/scene").c_str())->status, 200);
+  // Once one is deleted there is room again.
+  EXPECT_EQ(client.Delete(("/api/sessions/" + a).c_str())->status, 200);
+  EXPECT_EQ(client.Post("/api/sessions", "{}", "application/json")->status, 201);
 }
 
 TEST(ServerConcurrency, IdleSessionsExpire) {
