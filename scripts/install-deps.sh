@@ -5,11 +5,16 @@
 # With --web-tests (`make test` passes it) it also installs what the web
 # viewer's end-to-end test needs: Chromium, node and npm, and playwright-core
 # from npm into tests/web/node_modules (npm ci, only when that is missing or
-# older than tests/web/package-lock.json).
+# older than tests/web/package-lock.json). With --fuzz it also installs clang
+# and libFuzzer for scripts/fuzz.sh.
 set -euo pipefail
 
 web_tests=false
-[ "${1:-}" = "--web-tests" ] && web_tests=true
+fuzz=false
+for arg in "$@"; do
+  [ "$arg" = "--web-tests" ] && web_tests=true
+  [ "$arg" = "--fuzz" ] && fuzz=true
+done
 
 packages=(
   build-essential cmake ninja-build pkg-config
@@ -18,6 +23,8 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libcpp-httplib-dev libjpeg-dev
 )
+# scripts/fuzz.sh: clang and its libFuzzer runtime (not needed by make test).
+$fuzz && packages+=(clang-14 libclang-rt-14-dev)
 
 missing=()
 for p in "${packages[@]}"; do
