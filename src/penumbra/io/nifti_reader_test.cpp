@@ -112,6 +112,10 @@ TEST(NiftiReader, PixdimUnknownNegativeAndInfinite) {
   EXPECT_EQ(read_nifti(path)->spacing(), vec3(1.0f, 1.0f, 2.5f));
   test::write_file(path, header().pixdim(1.0f, INFINITY, 1.0f).file(voxels));
   test::expect_io_error([&] { read_nifti(path); }, "pixdim[2] is inf");
+  // Finite, but the centred box of 5 voxels of 2.5e38 would reach infinity
+  // (found by fuzz_nifti).
+  test::write_file(path, header().pixdim(1.0f, 1.0f, 2.5e38f).file(voxels));
+  test::expect_io_error([&] { read_nifti(path); }, "the volume's box reaches");
 }
 
 }  // namespace
