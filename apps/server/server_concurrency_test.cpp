@@ -150,11 +150,17 @@ TEST(ServerConcurrency, AFullQueueAnswers503AndRecovers) {
   EXPECT_EQ(post_frame(server, ids[3], frame_body(16, 16))->status, 200);
 }
 
-TEST(ServerConcurrency, OldSessionsAreEvictedBeyondTheLimit) {
+// A server that holds two sessions, evicting one for a third only when it
+// has been idle for `grace`.
+ServerOptions two_sessions(std::chrono::seconds grace) {
   ServerOptions options = TestServer::default_options();
   options.max_sessions = 2;
-  options.session_eviction_grace = std::chrono::seconds(0);
-  TestServer server(options);
+  options.session_eviction_grace = grace;
+  return options;
+}
+
+TEST(ServerConcurrency, OldSessionsAreEvictedBeyondTheLimit) {
+  TestServer server(two_sessions(std::chrono::seconds(0)));
   const std::string a = server.create_session();
   const std::string b = server.create_session();
   const std::string c = server.create_session();
@@ -165,10 +171,7 @@ TEST(ServerConcurrency, OldSessionsAreEvictedBeyondTheLimit) {
 }
 
 TEST(ServerConcurrency, SessionsInUseAreNotEvictedToMakeRoom) {
-  ServerOptions options = TestServer::default_options();
-  options.max_sessions = 2;
-  options.session_eviction_grace = std::chrono::seconds(60);
-  TestServer server(options);
+  TestServer server(two_sessions(std::chrono::seconds(60)));
   const std::string a = server.create_session();
   const std::string b = server.create_session();
   auto client = server.client();

@@ -52,6 +52,18 @@ void handle(Session& session, int mode, const std::string& text) {
                                    : frame_request_from_query(parse_query(text), kMaxSide);
   request.width = std::min(request.width, 16);
   request.height = std::min(request.height, 16);
+  // At most 16 paths per pixel, as in fuzz_scene: more is work asked for, not a hang.
+  if (request.scene && request.scene->is_object()) {
+    json* params = nullptr;
+    if (auto r = request.scene->find("render"); r != request.scene->end() && r->is_object()) {
+      if (auto p = r->find("params"); p != r->end() && p->is_object()) params = &*p;
+    }
+    for (const char* name : {"spp", "min_spp"}) {
+      if (params && params->contains(name) && (*params)[name].is_number() && (*params)[name].get<double>() > 16.0) {
+        (*params)[name] = 16;
+      }
+    }
+  }
   (void)session.render(request);
 }
 

@@ -144,7 +144,7 @@ TEST(EdgeCases, ACameraBeyondFloatMarchingRangeIsAnError) {
     EXPECT_EQ(e.key(), "camera.eye");
   }
   // Farther still, the distance to the target overflows a float by itself.
-  for (const vec3 eye : {vec3(0.0f, -1e30f, 0.0f), vec3(3e38f, 0.0f, 0.0f)}) {
+  for (const vec3& eye : {vec3(0.0f, -1e30f, 0.0f), vec3(3e38f, 0.0f, 0.0f)}) {
     far.eye = eye;
     far.target = -eye;
     EXPECT_THROW(scene.set_camera(far), InvalidScene);
