@@ -19,13 +19,13 @@ build="${FUZZ_BUILD:-$root/build-fuzz}"
 harnesses=("$@")
 [ ${#harnesses[@]} -gt 0 ] || harnesses=(nrrd metaimage nifti vti dat scene obj ply preset server)
 
-"$root/scripts/install-deps.sh" --fuzz
+"$root/scripts/install-deps.sh" --clang
 cxx=""
 for c in clang++-14 clang++; do command -v "$c" > /dev/null && { cxx="$c"; break; }; done
 cc="${cxx/++/}"
 probe='extern "C" int LLVMFuzzerTestOneInput(const char*, unsigned long) { return 0; }'
 if [ -z "$cxx" ] || ! echo "$probe" | "$cxx" -x c++ -fsanitize=fuzzer - -o /dev/null 2> /dev/null; then
-  echo "fuzz.sh: needs clang with libFuzzer: apt-get install clang-14 libclang-rt-14-dev" >&2
+  echo "fuzz.sh: needs clang with libFuzzer: scripts/install-deps.sh --clang" >&2
   exit 1
 fi
 

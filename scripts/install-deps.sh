@@ -5,15 +5,15 @@
 # With --web-tests (`make test` passes it) it also installs what the web
 # viewer's end-to-end test needs: Chromium, node and npm, and playwright-core
 # from npm into tests/web/node_modules (npm ci, only when that is missing or
-# older than tests/web/package-lock.json). With --fuzz it also installs clang
-# and libFuzzer for scripts/fuzz.sh.
+# older than tests/web/package-lock.json). With --clang it also installs clang
+# 14 and its sanitizer and libFuzzer runtimes (scripts/sanitize.sh, fuzz.sh).
 set -euo pipefail
 
 web_tests=false
-fuzz=false
+clang=false
 for arg in "$@"; do
   [ "$arg" = "--web-tests" ] && web_tests=true
-  [ "$arg" = "--fuzz" ] && fuzz=true
+  [ "$arg" = "--clang" ] && clang=true
 done
 
 packages=(
@@ -23,8 +23,8 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libcpp-httplib-dev libjpeg-dev
 )
-# scripts/fuzz.sh: clang and its libFuzzer runtime (not needed by make test).
-$fuzz && packages+=(clang-14 libclang-rt-14-dev)
+# scripts/sanitize.sh and fuzz.sh: clang with its ASan, UBSan and libFuzzer runtimes.
+$clang && packages+=(clang-14 libclang-rt-14-dev)
 
 missing=()
 for p in "${packages[@]}"; do
