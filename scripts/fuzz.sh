@@ -30,7 +30,7 @@ if [ -z "$cxx" ] || ! echo "$probe" | "$cxx" -x c++ -fsanitize=fuzzer - -o /dev/
 fi
 
 CC="$cc" CXX="$cxx" cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -gline-tables-only" -DPENUMBRA_FUZZ=ON -DPENUMBRA_BUILD_TESTS=OFF \
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -gline-tables-only" -DPENUMBRA_FUZZ=ON \
   -DPENUMBRA_NATIVE=OFF > /dev/null
 targets=(fuzz_make_seeds)
 for h in "${harnesses[@]}"; do targets+=("fuzz_$h"); done

@@ -12,7 +12,7 @@
 set -euo pipefail
 
 root="$(cd "$(dirname "$0")/.." && pwd)"
-build="${SANITIZE_BUILD:-$root/build-sanitize}"
+build="$(realpath -m "${SANITIZE_BUILD:-$root/build-sanitize}")"
 jobs="${JOBS:-$(nproc)}"
 
 start=$(date +%s)

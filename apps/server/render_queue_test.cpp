@@ -125,10 +125,12 @@ TEST(RenderQueue, ShutdownFailsWaitingJobsAndFinishesRunningOnes) {
   std::future<void> running;
   std::future<void> waiting;
   std::atomic<bool> finished{false};
+  // Declared before the queue: its destructor waits for the running job,
+  // which reads them (ASan found them destroyed first, a use after scope).
+  std::atomic<bool> started{false};
+  std::atomic<bool> submitted{false};
   {
     RenderQueue queue(1, 8);
-    std::atomic<bool> started{false};
-    std::atomic<bool> submitted{false};
     // The running job lasts until the destructor has dropped the waiting one
     // (the only worker is busy here, so nothing else takes it off the queue).
     running = queue.submit("a", false, [&] {
