@@ -17,7 +17,9 @@ using nlohmann::json;
 void send_json(Response& res, const json& body, int status) {
   res.status = status;
   res.set_header("Cache-Control", "no-store");
-  res.set_content(body.dump(), "application/json");
+  // Errors echo what clients sent (a query parameter's name, a key), which
+  // need not be UTF-8: replace invalid bytes rather than throw from dump().
+  res.set_content(body.dump(-1, ' ', false, json::error_handler_t::replace), "application/json");
 }
 
 void send_error(Response& res, int status, const std::string& key, const std::string& message) {
