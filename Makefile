@@ -4,7 +4,7 @@
 BUILD ?= build
 JOBS ?= $(shell nproc)
 
-.PHONY: all deps configure build demo test bench clean
+.PHONY: all deps configure build demo test sanitize fuzz bench clean
 
 all: build
 
@@ -23,6 +23,16 @@ demo: build
 test: build
 	@scripts/install-deps.sh --web-tests
 	@ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
+
+# The unit test suites under ASan and UBSan in build-sanitize/ (CI runs it
+# after `test`); docs/RELIABILITY.md.
+sanitize: deps
+	@scripts/sanitize.sh
+
+# Every fuzz target for FUZZ_SECONDS each (clang, build-fuzz/); docs/RELIABILITY.md.
+FUZZ_SECONDS ?= 600
+fuzz:
+	@scripts/fuzz.sh $(FUZZ_SECONDS)
 
 bench: configure
 	@cmake -S . -B $(BUILD) -DPENUMBRA_BUILD_BENCHMARKS=ON > /dev/null

@@ -5,11 +5,16 @@
 # With --web-tests (`make test` passes it) it also installs what the web
 # viewer's end-to-end test needs: Chromium, node and npm, and playwright-core
 # from npm into tests/web/node_modules (npm ci, only when that is missing or
-# older than tests/web/package-lock.json).
+# older than tests/web/package-lock.json). With --clang it also installs clang
+# 14 and its sanitizer and libFuzzer runtimes (scripts/sanitize.sh, fuzz.sh).
 set -euo pipefail
 
 web_tests=false
-[ "${1:-}" = "--web-tests" ] && web_tests=true
+clang=false
+for arg in "$@"; do
+  [ "$arg" = "--web-tests" ] && web_tests=true
+  [ "$arg" = "--clang" ] && clang=true
+done
 
 packages=(
   build-essential cmake ninja-build pkg-config
@@ -19,6 +24,8 @@ packages=(
   libcpp-httplib-dev libjpeg-dev libhwy-dev
   pybind11-dev python3-dev python3-numpy python3-pytest python3-setuptools
 )
+# scripts/sanitize.sh and fuzz.sh: clang with its ASan, UBSan and libFuzzer runtimes.
+$clang && packages+=(clang-14 libclang-rt-14-dev)
 
 missing=()
 for p in "${packages[@]}"; do

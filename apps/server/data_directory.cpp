@@ -76,6 +76,18 @@ fs::path DataDirectory::resolve(std::string_view relative, const std::string& ke
   return real;
 }
 
+std::string DataDirectory::relative_message(std::string_view message) const {
+  std::string out(message);
+  if (!available()) return out;
+  const std::string prefix = (root_ / "").string();  // with the trailing '/'
+  for (std::size_t at = out.find(prefix); at != std::string::npos; at = out.find(prefix, at)) out.erase(at, prefix.size());
+  // The root itself, where a message names the folder.
+  for (std::size_t at = out.find(root_.string()); at != std::string::npos; at = out.find(root_.string(), at)) {
+    out.replace(at, root_.string().size(), "the data folder");
+  }
+  return out;
+}
+
 std::vector<DataEntry> DataDirectory::list_volumes(int max_depth) const {
   std::vector<DataEntry> entries;
   if (!available()) return entries;

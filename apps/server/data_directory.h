@@ -39,6 +39,10 @@ class DataDirectory {
   // left out.
   std::vector<DataEntry> list_volumes(int max_depth = 4) const;
 
+  // `message` with every mention of the root folder dropped, so that paths
+  // in it read relative to the data folder ("CT/head.nhdr: truncated").
+  std::string relative_message(std::string_view message) const;
+
   // Whether `name` ends in one of the readers' extensions (case-insensitive).
   static bool is_volume_file_name(std::string_view name);
 

@@ -17,7 +17,9 @@ using nlohmann::json;
 void send_json(Response& res, const json& body, int status) {
   res.status = status;
   res.set_header("Cache-Control", "no-store");
-  res.set_content(body.dump(), "application/json");
+  // Errors echo what clients sent (a query parameter's name, a key), which
+  // need not be UTF-8: replace invalid bytes rather than throw from dump().
+  res.set_content(body.dump(-1, ' ', false, json::error_handler_t::replace), "application/json");
 }
 
 void send_error(Response& res, int status, const std::string& key, const std::string& message) {
@@ -59,7 +61,8 @@ json parse_body(const Request& req, bool allow_empty) {
   }
   try {
     return json::parse(req.body);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {
+    // parse_error, and out_of_range for a number beyond a double (1e400).
     throw HttpError(400, "body", fmt::format("not valid JSON: {}", e.what()));
   }
 }

@@ -28,6 +28,7 @@
 // handler threads stay free for other clients' cheap requests.
 #include <chrono>
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -45,9 +46,17 @@ struct ServerOptions {
   std::string initial_scene;
   int render_workers = 2;
   int max_waiting_renders = 16;
+  int max_waiting_renders_per_session = 4;  // so one client's flood cannot fill the queue
   int http_threads = 48;  // idle keep-alive connections hold one each
   std::size_t max_sessions = 16;
   std::chrono::seconds session_idle_timeout{3600};
+  // A session used within this long is never evicted to make room for a new
+  // one: with max_sessions all that recent, POST /api/sessions answers 503,
+  // so a flood of new sessions cannot push out viewers that are in use.
+  std::chrono::seconds session_eviction_grace{30};
+  // What the sessions' technique structures and images may hold together
+  // (session_memory.h); 0: the process's memory budget.
+  std::uint64_t session_memory_bytes = 0;
   int max_image_side = 2048;
   int max_builtin_size = 256;
   std::size_t max_request_bytes = std::size_t(8) << 20;

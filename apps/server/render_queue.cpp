@@ -8,7 +8,8 @@
 
 namespace penumbra::server {
 
-RenderQueue::RenderQueue(int workers, int max_waiting) : max_waiting_(std::max(1, max_waiting)) {
+RenderQueue::RenderQueue(int workers, int max_waiting, int max_waiting_per_session)
+    : max_waiting_(std::max(1, max_waiting)), max_waiting_per_session_(std::max(1, max_waiting_per_session)) {
   for (int i = 0; i < std::max(1, workers); ++i) workers_.emplace_back([this] { worker_loop(); });
 }
 
@@ -39,6 +40,12 @@ std::future<void> RenderQueue::submit(const std::string& session, bool replaceab
         old->done.set_exception(std::make_exception_ptr(Superseded()));
         waiting_.erase(old);
       }
+    }
+    // One session (one client flooding frames) may not fill the whole queue
+    // and so turn every other session's frames away.
+    const auto own = std::count_if(waiting_.begin(), waiting_.end(), [&](const Job& j) { return j.session == session; });
+    if (own >= max_waiting_per_session_) {
+      throw HttpError(503, "", fmt::format("busy: this session already has {} renders waiting; try again shortly", own));
     }
     if (int(waiting_.size()) >= max_waiting_) {
       throw HttpError(503, "", fmt::format("busy: {} renders are waiting; try again shortly", waiting_.size()));

@@ -12,8 +12,10 @@
 //   with Superseded (HTTP 409), because the newer frame shows everything it
 //   would have. This is what keeps an interacting client from queueing up
 //   stale preview frames.
-// - At most `max_waiting` jobs wait in all; beyond that submit() throws
-//   HttpError 503, so a flood of requests cannot pile up handler threads.
+// - At most `max_waiting` jobs wait in all, and at most
+//   `max_waiting_per_session` of one session; beyond that submit() throws
+//   HttpError 503, so a flood of requests cannot pile up handler threads,
+//   and one client's flood cannot turn every other client's frames away.
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
@@ -35,7 +37,7 @@ class Superseded : public std::runtime_error {
 
 class RenderQueue {
  public:
-  RenderQueue(int workers, int max_waiting);
+  RenderQueue(int workers, int max_waiting, int max_waiting_per_session = 4);
   ~RenderQueue();  // waiting jobs fail (HttpError 503), running ones finish
   RenderQueue(const RenderQueue&) = delete;
   RenderQueue& operator=(const RenderQueue&) = delete;
@@ -60,6 +62,7 @@ class RenderQueue {
   void worker_loop();
 
   const int max_waiting_;
+  const int max_waiting_per_session_;
   mutable std::mutex mutex_;
   std::condition_variable wake_;
   std::deque<Job> waiting_;

@@ -7,6 +7,7 @@
 #include <atomic>
 #include <chrono>
 #include <future>
+#include <vector>
 
 namespace penumbra::server {
 namespace {
@@ -23,7 +24,7 @@ TEST(RenderQueue, RunsJobsAndPassesTheirErrorsOn) {
 }
 
 TEST(RenderQueue, JobsOfOneSessionNeverOverlapAndKeepTheirOrder) {
-  RenderQueue queue(4, 64);
+  RenderQueue queue(4, 64, 64);
   std::atomic<int> inside{0};
   std::atomic<int> max_inside{0};
   std::vector<int> order;
@@ -98,14 +99,38 @@ TEST(RenderQueue, RefusesJobsBeyondTheWaitingLimit) {
   c.get();
 }
 
+TEST(RenderQueue, OneSessionCannotFillTheWholeQueue) {
+  RenderQueue queue(1, 16, 4);
+  std::promise<void> release;
+  std::shared_future<void> released = release.get_future().share();
+  std::atomic<bool> started{false};
+  auto running = queue.submit("other", false, [&] { started = true; released.wait(); });
+  while (!started) std::this_thread::yield();
+  std::vector<std::future<void>> flood;
+  for (int i = 0; i < 4; ++i) flood.push_back(queue.submit("flood", false, [] {}));
+  try {
+    queue.submit("flood", false, [] {});
+    ADD_FAILURE() << "a fifth waiting job of one session was accepted";
+  } catch (const HttpError& e) {
+    EXPECT_EQ(e.status(), 503);
+  }
+  auto other = queue.submit("other", false, [] {});  // room for everybody else
+  release.set_value();
+  running.get();
+  for (auto& f : flood) f.get();
+  other.get();
+}
+
 TEST(RenderQueue, ShutdownFailsWaitingJobsAndFinishesRunningOnes) {
   std::future<void> running;
   std::future<void> waiting;
   std::atomic<bool> finished{false};
+  // Declared before the queue: its destructor waits for the running job,
+  // which reads them (ASan found them destroyed first, a use after scope).
+  std::atomic<bool> started{false};
+  std::atomic<bool> submitted{false};
   {
     RenderQueue queue(1, 8);
-    std::atomic<bool> started{false};
-    std::atomic<bool> submitted{false};
     // The running job lasts until the destructor has dropped the waiting one
     // (the only worker is busy here, so nothing else takes it off the queue).
     running = queue.submit("a", false, [&] {

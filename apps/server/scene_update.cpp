@@ -1,7 +1,9 @@
 #include "server/scene_update.h"
 
 #include "penumbra/base/error.h"
+#include "penumbra/io/mesh_reader.h"
 #include "penumbra/io/scene_json.h"
+#include "penumbra/io/volume_reader.h"
 #include "penumbra/techniques/registry.h"
 #include "server/http_error.h"
 
@@ -38,6 +40,19 @@ void check_technique(const Scene& scene) {
   }
 }
 
+// Runs a load of a file in the data folder; an IoError becomes a 422 that
+// names the scene key and the file relative to the data folder, never the
+// server's own paths.
+template <class Load> auto in_data_folder(const DataDirectory& data, const std::string& key, const Load& load) {
+  try {
+    return load();
+  } catch (const IoError& e) {
+    throw HttpError(422, key, data.relative_message(e.what()));
+  } catch (const OutOfMemoryBudget& e) {
+    throw HttpError(413, key, data.relative_message(e.what()));
+  }
+}
+
 }  // namespace
 
 ClientScene parse_client_scene(const json& scene_json, const DataDirectory& data, VolumeCache& cache,
@@ -54,18 +69,26 @@ ClientScene parse_client_scene(const json& scene_json, const DataDirectory& data
   // imports presets through POST /api/presets instead.
   options.allow_preset_files = false;
   options.load_volume = [&](const VolumeSource& source, const std::filesystem::path&) {
-    return cache
-        .get(out.volume_key,
-             [&] {
-               std::filesystem::path path;
-               if (!source.file.empty()) path = data.resolve_volume(source.file, "volume.file");
-               return LoadedVolume{load_scene_volume(source, path), source};
-             })
-        .volume;
+    return cache.volume(out.volume_key, [&] {
+      if (source.file.empty()) return load_scene_volume(source, {});
+      const std::filesystem::path path = data.resolve_volume(source.file, "volume.file");
+      return in_data_folder(data, "volume.file", [&] { return load_scene_volume(source, path); });
+    });
   };
-  // Mesh files and mesh texture volumes, like volumes, only from the data folder.
+  // Mesh files and mesh texture volumes, like volumes, only from the data
+  // folder, and read once however many sessions show them.
   options.resolve_file = [&](const std::string& file, const std::string& key) {
     return key.ends_with(".texture") ? data.resolve_volume(file, key) : data.resolve_mesh(file, key);
+  };
+  options.load_mesh = [&](const std::filesystem::path& path, const std::string& key) {
+    return cache.mesh(path.string(), [&] {
+      return in_data_folder(data, key, [&] { return std::make_shared<const TriangleMesh>(read_mesh(path)); });
+    });
+  };
+  options.load_texture = [&](const std::filesystem::path& path, const std::string& key) {
+    return cache.texture(path.string(), [&] {
+      return in_data_folder(data, key, [&]() -> std::shared_ptr<const Volume> { return read_volume(path); });
+    });
   };
   out.scene = parse_scene(scene_json.dump(), data.root(), options);
   check_technique(out.scene);

@@ -258,5 +258,62 @@ TEST(SceneUpdate, MeshEditsMoveOnlyTheMeshesVersion) {
   EXPECT_NE(state.scene().versions().meshes, added.meshes);
 }
 
+TEST(SceneUpdate, MeshFilesAndTexturesAreReadOnceForEverySession) {
+  make_tet_obj();
+  Fixture f;
+  const json meshes = {{{"file", "tet.obj"},
+                        {"material", {{"detail", {{"type", "texture"}, {"texture", "tiny.nrrd"}}}}}}};
+  const ClientScene a = f.parse(mesh_scene(meshes));
+  json moved = mesh_scene(meshes);
+  moved["camera"]["eye"] = {30, -30, 30};
+  const ClientScene b = f.parse(moved);  // a scene PUT that keeps its meshes, or another session
+  EXPECT_EQ(f.cache.mesh_loads(), 1u);
+  EXPECT_EQ(f.cache.texture_loads(), 1u);
+  EXPECT_EQ(a.scene.meshes()[0].mesh, b.scene.meshes()[0].mesh);
+  EXPECT_EQ(a.scene.meshes()[0].material.detail.texture, b.scene.meshes()[0].material.detail.texture);
+}
+
+// An error answer must not show where the server keeps its files.
+void expect_relative_error(Fixture& f, const json& scene, int status, const std::string& key,
+                           const std::string& starts_with) {
+  try {
+    f.parse(scene);
+    ADD_FAILURE() << "accepted: " << scene.dump();
+  } catch (const HttpError& e) {
+    EXPECT_EQ(e.status(), status) << e.what();
+    EXPECT_EQ(e.key(), key);
+    EXPECT_EQ(std::string(e.what()).rfind(starts_with, 0), 0u) << e.what();
+    EXPECT_EQ(std::string(e.what()).find(testing::test_data_root().string()), std::string::npos) << e.what();
+    EXPECT_EQ(std::string(e.what()).find(std::filesystem::canonical(testing::test_data_root()).string()),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(SceneUpdate, FileErrorsNameTheKeyAndTheFileRelativeToTheDataFolder) {
+  // A data folder of its own: the other tests list theirs.
+  const std::filesystem::path root = testing::test_data_root() / "broken-data";
+  std::filesystem::create_directories(root / "bad");
+  std::ofstream(root / "bad" / "truncated.nrrd")
+      << "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 8 8 8\nencoding: raw\n\nonly a few bytes";
+  std::ofstream(root / "bad" / "huge.nrrd")
+      << "NRRD0004\ntype: float\ndimension: 3\nsizes: 100000 100000 100000\nencoding: raw\n\n";
+  std::ofstream(root / "bad" / "broken.obj") << "v 0 0 0\nf 1 2 x\n";
+  Fixture f;
+  f.data = DataDirectory(root);
+  expect_relative_error(f, file_scene("bad/truncated.nrrd"), 422, "volume.file", "bad/truncated.nrrd: ");
+  expect_relative_error(f, file_scene("bad/huge.nrrd"), 413, "volume.file", "voxel data");
+  expect_relative_error(f, mesh_scene({{{"file", "bad/broken.obj"}}}), 422, "meshes[0].file", "bad/broken.obj: ");
+  expect_relative_error(f,
+                        mesh_scene({{{"builtin", "sphere"},
+                                     {"material", {{"detail", {{"type", "texture"}, {"texture", "bad/truncated.nrrd"}}}}}}}),
+                        422, "meshes[0].material.detail.texture", "bad/truncated.nrrd: ");
+  // A failed load is not cached (the next request tries again); only the
+  // builtin volume of the mesh scenes loaded.
+  EXPECT_EQ(f.cache.loads(), 1u);
+  EXPECT_EQ(f.cache.mesh_loads(), 0u);
+  EXPECT_EQ(f.cache.texture_loads(), 0u);
+}
+
 }  // namespace
 }  // namespace penumbra::server

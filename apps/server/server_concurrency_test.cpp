@@ -20,6 +20,7 @@ using nlohmann::json;
 using testing::frame_body;
 using testing::small_scene;
 using testing::TestServer;
+using testing::expect_error;
 
 // Holds every job that starts on a render worker until released.
 class Gate {
@@ -149,10 +150,17 @@ TEST(ServerConcurrency, AFullQueueAnswers503AndRecovers) {
   EXPECT_EQ(post_frame(server, ids[3], frame_body(16, 16))->status, 200);
 }
 
-TEST(ServerConcurrency, OldSessionsAreEvictedBeyondTheLimit) {
+// A server that holds two sessions, evicting one for a third only when it
+// has been idle for `grace`.
+ServerOptions two_sessions(std::chrono::seconds grace) {
   ServerOptions options = TestServer::default_options();
   options.max_sessions = 2;
-  TestServer server(options);
+  options.session_eviction_grace = grace;
+  return options;
+}
+
+TEST(ServerConcurrency, OldSessionsAreEvictedBeyondTheLimit) {
+  TestServer server(two_sessions(std::chrono::seconds(0)));
   const std::string a = server.create_session();
   const std::string b = server.create_session();
   const std::string c = server.create_session();
@@ -160,6 +168,20 @@ TEST(ServerConcurrency, OldSessionsAreEvictedBeyondTheLimit) {
   EXPECT_EQ(client.Get(("/api/sessions/" + a + "/scene").c_str())->status, 404);
   EXPECT_EQ(client.Get(("/api/sessions/" + b + "/scene").c_str())->status, 200);
   EXPECT_EQ(client.Get(("/api/sessions/" + c + "/scene").c_str())->status, 200);
+}
+
+TEST(ServerConcurrency, SessionsInUseAreNotEvictedToMakeRoom) {
+  TestServer server(two_sessions(std::chrono::seconds(60)));
+  const std::string a = server.create_session();
+  const std::string b = server.create_session();
+  auto client = server.client();
+  const auto refused = client.Post("/api/sessions", "{}", "application/json");
+  expect_error(refused, 503, "session");
+  EXPECT_EQ(client.Get(("/api/sessions/" + a + "/scene").c_str())->status, 200);
+  EXPECT_EQ(client.Get(("/api/sessions/" + b + "/scene").c_str())->status, 200);
+  // Once one is deleted there is room again.
+  EXPECT_EQ(client.Delete(("/api/sessions/" + a).c_str())->status, 200);
+  EXPECT_EQ(client.Post("/api/sessions", "{}", "application/json")->status, 201);
 }
 
 TEST(ServerConcurrency, IdleSessionsExpire) {

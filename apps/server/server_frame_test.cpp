@@ -70,6 +70,16 @@ TEST_F(ServerFrames, JpegFramesAndQueryFrames) {
   EXPECT_EQ(image.height(), 10);
 }
 
+// Found by fuzz_server: an error that echoes a query parameter's name which
+// is not UTF-8 made the JSON error body itself throw while being written.
+TEST_F(ServerFrames, ErrorsEchoingBytesThatAreNotUtf8StillAnswerInJson) {
+  const std::string id = server.create_session();
+  auto c = server.client();
+  const auto r = c.Get(session_path(id, "/frame?width=16&w%FFdth=16").c_str());
+  expect_error(r, 400);
+  EXPECT_NE(json_of(r).value("key", "").find("w"), std::string::npos);
+}
+
 TEST_F(ServerFrames, ACameraAloneMovesTheView) {
   const std::string id = server.create_session();
   const auto first = frame(id, frame_body(32, 32));

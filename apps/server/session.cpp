@@ -58,6 +58,16 @@ json lights_for_new_box(json lights, const Box3& old_box, const Box3& new_box) {
 Session::Session(std::string id, SessionContext context)
     : id_(std::move(id)), context_(context), last_used_(Clock::now().time_since_epoch().count()) {}
 
+Session::~Session() {
+  if (context_.memory) context_.memory->forget(id_);
+}
+
+std::uint64_t Session::bytes() const {
+  std::uint64_t sum = std::uint64_t(image_.pixel_count()) * sizeof(vec4);
+  for (const auto& [name, t] : techniques_) sum += t->aux_bytes();
+  return sum;
+}
+
 void Session::set_scene(const json& scene_json) {
   ClientScene next = parse_client_scene(scene_json, *context_.data, *context_.cache, context_.limits);
   const bool data_changed = state_.apply(next);
@@ -129,6 +139,16 @@ Frame Session::render(const FrameRequest& request) {
   Frame frame;
   const auto t0 = Clock::now();
   t.prepare(scene, params);
+  if (context_.memory) {
+    try {
+      context_.memory->record(id_, bytes());
+    } catch (const OutOfMemoryBudget&) {
+      techniques_.clear();  // rebuilt by the next frame, if the others have made room by then
+      image_ = Image();
+      context_.memory->forget(id_);
+      throw;
+    }
+  }
   const auto t1 = Clock::now();
   RenderStats stats;
   t.render(scene, image_, &stats);

@@ -10,6 +10,7 @@
 #include "penumbra/render/technique.h"
 #include "server/image_encoding.h"
 #include "server/scene_update.h"
+#include "server/session_memory.h"
 
 #include <nlohmann/json.hpp>
 
@@ -28,6 +29,7 @@ struct SessionContext {
   const DataDirectory* data = nullptr;
   VolumeCache* cache = nullptr;
   SceneLimits limits;
+  SessionMemory* memory = nullptr;  // null: unaccounted (tests of one session)
 };
 
 struct FrameRequest {
@@ -60,6 +62,9 @@ struct Frame {
 class Session {
  public:
   Session(std::string id, SessionContext context);
+  ~Session();  // forgets its memory record
+  Session(const Session&) = delete;
+  Session& operator=(const Session&) = delete;
 
   const std::string& id() const { return id_; }
 
@@ -70,8 +75,12 @@ class Session {
   // new box, point lights keep their place relative to it, and planes and
   // clip planes (placed for the old volume) are dropped.
   void load_volume(const nlohmann::json& volume_section);
-  // job: renders a frame.
+  // job: renders a frame. When the sessions' structures together exceed
+  // their budget (SessionMemory), this session's are released and the frame
+  // fails with OutOfMemoryBudget (HTTP 413).
   Frame render(const FrameRequest& request);
+  // job: what the session's technique structures and image hold.
+  std::uint64_t bytes() const;
 
   // Snapshots (any thread).
   bool has_scene() const;

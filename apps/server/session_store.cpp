@@ -28,6 +28,12 @@ std::shared_ptr<Session> SessionStore::create(SessionContext context) {
     const auto oldest = std::min_element(sessions_.begin(), sessions_.end(), [](const auto& a, const auto& b) {
       return a.second->last_used() < b.second->last_used();
     });
+    if (std::chrono::steady_clock::now() - oldest->second->last_used() < eviction_grace_) {
+      throw HttpError(503, "session",
+                      fmt::format("the server holds its {} sessions and every one was used in the last {} s; try "
+                                  "again later (or DELETE a session you no longer need)",
+                                  sessions_.size(), eviction_grace_.count()));
+    }
     sessions_.erase(oldest);
   }
   sessions_[session->id()] = session;

@@ -1,47 +1,43 @@
 #pragma once
-// Volumes loaded by the server, shared by every session that shows them, so
-// that ten tabs on the same CT hold it once and a scene update that keeps the
-// volume never reloads it. Entries are weak: a volume no session uses is
-// freed, except the most recently loaded few, kept so that switching back and
-// forth between volumes does not reread files.
-#include "penumbra/scene/scene.h"
+// What the server loads from its data folder, shared by every session
+// (load_cache.h): volumes by their scene section (a scene update that keeps
+// the volume never reloads it), and mesh files and mesh texture volumes by
+// their real path (a scene PUT that keeps its meshes never rereads them).
+#include "penumbra/scene/mesh.h"
+#include "penumbra/volume/volume.h"
+#include "server/load_cache.h"
 
 #include <cstddef>
-#include <deque>
-#include <functional>
-#include <map>
 #include <memory>
-#include <mutex>
 #include <string>
 
 namespace penumbra::server {
 
-struct LoadedVolume {
-  std::shared_ptr<const Volume> volume;
-  VolumeSource source;
-};
-
 class VolumeCache {
  public:
-  explicit VolumeCache(std::size_t keep_recent = 2) : keep_recent_(keep_recent) {}
+  explicit VolumeCache(std::size_t keep_recent = 2) : volumes_(keep_recent), textures_(keep_recent), meshes_(8) {}
 
-  // The volume cached under `key`, or load()'s result, cached. The load runs
-  // outside the lock (other keys stay available while a big file is read).
-  LoadedVolume get(const std::string& key, const std::function<LoadedVolume()>& load);
+  // The volume of a scene's volume section (`key`), loaded once.
+  std::shared_ptr<const Volume> volume(const std::string& key, const LoadCache<Volume>::Loader& load) {
+    return volumes_.get(key, load);
+  }
+  // A mesh's texture volume or a mesh file, by its real path.
+  std::shared_ptr<const Volume> texture(const std::string& path, const LoadCache<Volume>::Loader& load) {
+    return textures_.get(path, load);
+  }
+  std::shared_ptr<const TriangleMesh> mesh(const std::string& path, const LoadCache<TriangleMesh>::Loader& load) {
+    return meshes_.get(path, load);
+  }
 
-  // Loads that get() has performed (tests check reuse with it).
-  std::size_t loads() const;
+  // Loads performed (tests check reuse with them).
+  std::size_t loads() const { return volumes_.loads(); }
+  std::size_t texture_loads() const { return textures_.loads(); }
+  std::size_t mesh_loads() const { return meshes_.loads(); }
 
  private:
-  struct Entry {
-    std::weak_ptr<const Volume> volume;
-    VolumeSource source;
-  };
-  mutable std::mutex mutex_;
-  std::map<std::string, Entry> entries_;
-  std::deque<std::shared_ptr<const Volume>> recent_;
-  std::size_t keep_recent_;
-  std::size_t loads_ = 0;
+  LoadCache<Volume> volumes_;
+  LoadCache<Volume> textures_;
+  LoadCache<TriangleMesh> meshes_;
 };
 
 }  // namespace penumbra::server

@@ -1,5 +1,6 @@
 #include "penumbra/base/error.h"
 #include "penumbra/base/memory_budget.h"
+#include "penumbra/base/numeric_cast.h"
 #include "penumbra/base/parallel.h"
 #include "penumbra/base/ray.h"
 #include "penumbra/base/rng.h"
@@ -110,6 +111,13 @@ TEST(Pcg32, IsDeterministicAndUniform) {
 
 TEST(MemoryBudget, RejectsHugeAllocationsAndOverflow) {
   EXPECT_THROW(check_memory_budget("test", memory_budget_bytes() + 1), OutOfMemoryBudget);
+  try {
+    check_memory_budget("voxel data from big.nii.gz", memory_budget_bytes() + 1);
+  } catch (const OutOfMemoryBudget& e) {
+    // What was refused, and how to change the budget.
+    EXPECT_NE(std::string(e.what()).find("voxel data from big.nii.gz needs"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("PENUMBRA_MEMORY_BUDGET_MB"), std::string::npos) << e.what();
+  }
   EXPECT_NO_THROW(check_memory_budget("test", 1024));
   EXPECT_EQ(checked_product({1ull << 40, 1ull << 40}), std::numeric_limits<std::uint64_t>::max());
   EXPECT_EQ(checked_product({3, 5, 7}), 105u);
@@ -135,6 +143,37 @@ TEST(Parallel, ThreadCountCanBeLimited) {
   set_thread_count(0);
   EXPECT_GE(thread_count(), 1);
   EXPECT_THROW(set_thread_count(-1), InvalidArgument);
+}
+
+TEST(NumericCast, IntegersOnlyFromFiniteValuesInRange) {
+  EXPECT_EQ(to_integer<int>(3.9), 3);
+  EXPECT_EQ(to_integer<int>(-3.9), -3);
+  EXPECT_EQ(to_integer<std::int16_t>(32767.5), 32767);
+  EXPECT_EQ(to_integer<std::int16_t>(32768.0), std::nullopt);
+  EXPECT_EQ(to_integer<std::int16_t>(-32768.0), -32768);
+  EXPECT_EQ(to_integer<std::int16_t>(-32769.0), std::nullopt);
+  EXPECT_EQ(to_integer<std::uint8_t>(-0.5), 0);
+  EXPECT_EQ(to_integer<std::uint8_t>(-1.0), std::nullopt);
+  EXPECT_EQ(to_integer<std::int64_t>(9.2e18), std::int64_t(9.2e18));
+  EXPECT_EQ(to_integer<std::int64_t>(9.3e18), std::nullopt);
+  EXPECT_EQ(to_integer<std::uint64_t>(1.8e19), std::uint64_t(1.8e19));
+  EXPECT_EQ(to_integer<std::uint64_t>(1.9e19), std::nullopt);
+  for (const double bad : {1e30, -1e30, std::nan(""), HUGE_VAL, -HUGE_VAL}) {
+    EXPECT_EQ(to_integer<int>(bad), std::nullopt) << bad;
+    EXPECT_EQ(to_integer<std::uint64_t>(bad), std::nullopt) << bad;
+  }
+  EXPECT_EQ(to_exact_integer<int>(12.0), 12);
+  EXPECT_EQ(to_exact_integer<int>(12.5), std::nullopt);
+  EXPECT_EQ(to_exact_integer<int>(std::nan("")), std::nullopt);
+}
+
+TEST(NumericCast, FloatsOnlyFromValuesInTheFloatRange) {
+  EXPECT_EQ(to_float(0.5), 0.5f);
+  EXPECT_EQ(to_float(-3.0e38), -3.0e38f);
+  EXPECT_EQ(to_float(1e300), std::nullopt);
+  EXPECT_EQ(to_float(-1e39), std::nullopt);
+  EXPECT_TRUE(std::isinf(*to_float(HUGE_VAL)));
+  EXPECT_TRUE(std::isnan(*to_float(std::nan(""))));
 }
 
 }  // namespace

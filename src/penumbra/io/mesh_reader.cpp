@@ -3,6 +3,7 @@
 
 #include "penumbra/base/error.h"
 #include "penumbra/base/memory_budget.h"
+#include "penumbra/base/numeric_cast.h"
 #include "penumbra/io/binary_file.h"
 #include "penumbra/io/byte_order.h"
 #include "penumbra/io/text_parsing.h"
@@ -22,6 +23,14 @@
 
 namespace penumbra {
 namespace {
+
+// A position read as doubles, as floats; a coordinate beyond the float range
+// (1e300, whose cast would be undefined) becomes NaN, which the callers refuse.
+vec3 float_position(const std::array<double, 3>& xyz) {
+  vec3 p;
+  for (int a = 0; a < 3; ++a) p[a] = to_float(xyz[std::size_t(a)]).value_or(std::numeric_limits<float>::quiet_NaN());
+  return p;
+}
 
 constexpr std::uint64_t kMaxVertices = std::numeric_limits<std::uint32_t>::max();  // glm::uvec3 indices
 
@@ -96,8 +105,8 @@ class ObjParser {
       if (!value) fail(n, fmt::format("vertex value '{}' is not a number", words[k]));
       if (k <= 3) xyz[k - 1] = *value;
     }
-    const vec3 p(static_cast<float>(xyz[0]), static_cast<float>(xyz[1]), static_cast<float>(xyz[2]));
-    if (!finite(p)) fail(n, "vertex position is not finite");
+    const vec3 p = float_position(xyz);
+    if (!finite(p)) fail(n, "vertex position is not finite (or beyond the float range)");
     if (mesh_.positions.size() >= kMaxVertices) fail(n, "more than 2^32 - 1 vertices");
     mesh_.positions.push_back(p);
   }
@@ -545,9 +554,10 @@ class PlyParser {
       add_fan(mesh_.triangles, corners_);
     }
     if (e == vertex_element_) {
-      const vec3 position(static_cast<float>(xyz[0]), static_cast<float>(xyz[1]), static_cast<float>(xyz[2]));
+      const vec3 position = float_position(xyz);
       if (!finite(position)) {
-        throw IoError(display_path(path_), fmt::format("PLY element 'vertex' {}: position is not finite", i));
+        throw IoError(display_path(path_),
+                      fmt::format("PLY element 'vertex' {}: position is not finite (or beyond the float range)", i));
       }
       mesh_.positions.push_back(position);
     }

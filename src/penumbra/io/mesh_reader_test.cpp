@@ -89,6 +89,7 @@ TEST(MeshReader, RejectsMalformedObj) {
       {"v 0 0 0\nv 1 0 x\nv 0 1 0\nf 1 2 3\n", "line 2: vertex value 'x' is not a number"},
       {"v 0 0\n", "line 1: a vertex needs 3 coordinates"},
       {"v 0 0 nan\n", "line 1: vertex position is not finite"},
+      {"v 0 1e300 0\n", "line 1: vertex position is not finite (or beyond the float range)"},  // was UB as a float
       {vertices + "f 1 2\n", "line 4: a face needs at least 3 vertices"},
       {vertices + "f 1 2 0\n", "line 4: vertex index 0"},
       {vertices + "\nf 1 2 3\nf 1 2 4\n", "line 6: vertex index 4 is out of range"},

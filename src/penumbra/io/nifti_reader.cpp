@@ -13,6 +13,7 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 namespace penumbra {
 namespace {
@@ -144,8 +145,15 @@ std::shared_ptr<Volume> read_nifti(const std::filesystem::path& path) {
 
   for (int a = 0; a < 3; ++a) {
     const float p = std::fabs(header.f32(76 + 4 * static_cast<std::size_t>(a + 1)));
-    // pixdim 0 or NaN means "unknown" in files in the wild; use unit spacing.
-    layout.spacing[a] = p > 0.0f && std::isfinite(p) ? p : 1.0f;
+    // pixdim 0 or NaN means "unknown" in files in the wild (2D images and
+    // some converters write them): unit spacing. A negative pixdim keeps its
+    // magnitude (the orientation lives in qfac and the forms); an infinite
+    // or subnormal one is an error.
+    if (std::isinf(p) || (p > 0.0f && p < std::numeric_limits<float>::min())) {
+      fail(path, fmt::format("pixdim[{}] is {}; a spacing must be finite and a normal float", a + 1,
+                             header.f32(76 + 4 * static_cast<std::size_t>(a + 1))));
+    }
+    layout.spacing[a] = p > 0.0f ? p : 1.0f;
   }
 
   const float qfac = header.f32(76);

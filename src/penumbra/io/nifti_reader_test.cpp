@@ -2,6 +2,7 @@
 
 #include "penumbra/io/io_test_support.h"
 
+#include <cmath>
 #include <gtest/gtest.h>
 
 
@@ -98,6 +99,23 @@ TEST(NiftiReader, MalformedFilesGiveIoError) {
   expect(std::vector<std::byte>(100, std::byte{0}), "truncated");
   test::write_file(dir / "bad.nii.gz", std::vector<std::byte>(400, std::byte{7}));
   test::expect_io_error([&] { read_nifti(dir / "bad.nii.gz"); }, "corrupt compressed data");
+}
+
+// pixdim 0 and NaN are "unknown" in the wild (unit spacing), a negative one
+// keeps its magnitude, an infinite one is an error.
+TEST(NiftiReader, PixdimUnknownNegativeAndInfinite) {
+  TempDir dir;
+  const auto path = dir / "p.nii";
+  const std::vector<std::byte> voxels(60, std::byte{1});
+  const auto header = [] { return NiftiHeader(std::endian::little).dims({3, 4, 5}).datatype(2); };
+  test::write_file(path, header().pixdim(0.0f, std::nanf(""), -2.5f).file(voxels));
+  EXPECT_EQ(read_nifti(path)->spacing(), vec3(1.0f, 1.0f, 2.5f));
+  test::write_file(path, header().pixdim(1.0f, INFINITY, 1.0f).file(voxels));
+  test::expect_io_error([&] { read_nifti(path); }, "pixdim[2] is inf");
+  // Finite, but the centred box of 5 voxels of 2.5e38 would reach infinity
+  // (found by fuzz_nifti).
+  test::write_file(path, header().pixdim(1.0f, 1.0f, 2.5e38f).file(voxels));
+  test::expect_io_error([&] { read_nifti(path); }, "the volume's box reaches");
 }
 
 }  // namespace

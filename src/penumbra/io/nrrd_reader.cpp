@@ -2,6 +2,7 @@
 
 #include "penumbra/base/error.h"
 #include "penumbra/base/memory_budget.h"
+#include "penumbra/base/numeric_cast.h"
 #include "penumbra/io/binary_file.h"
 #include "penumbra/io/file_pattern.h"
 #include "penumbra/io/text_header.h"
@@ -251,10 +252,14 @@ std::shared_ptr<Volume> read_nrrd(const std::filesystem::path& path) {
   for (int a = 0; a < 3; ++a) {
     // NaN is NRRD's "unknown"; use unit spacing as the README asks for such data.
     if (std::isnan(spacing[a])) spacing[a] = 1.0;
-    if (!std::isfinite(spacing[a]) || spacing[a] == 0.0) {
-      fail(path, fmt::format("axis {} has spacing {}; spacings must be finite and non-zero", a + 1, spacing[a]));
+    // A negative spacing (a flipped axis) keeps its magnitude: penumbra's
+    // index-to-world map has no flips.
+    const std::optional<float> magnitude = to_float(std::fabs(spacing[a]));
+    if (!std::isfinite(spacing[a]) || !magnitude || !(*magnitude > 0.0f)) {
+      fail(path, fmt::format("axis {} has spacing {}; spacings must be finite, non-zero and within the float range",
+                             a + 1, spacing[a]));
     }
-    layout.spacing[a] = static_cast<float>(std::fabs(spacing[a]));
+    layout.spacing[a] = *magnitude;
   }
   if (const std::string* origin_text = find_field(header, {"space origin"})) {
     const auto vectors = parse_vectors(path, "space origin", *origin_text);

@@ -215,5 +215,19 @@ TEST_F(NrrdMalformed, NotANrrdOrEmptyOrBinaryGarbage) {
                "without ')'");
 }
 
+// NaN is NRRD's "unknown" spacing (unit spacing); a negative one is a
+// flipped axis (its magnitude); one beyond a float was undefined behaviour.
+TEST(NrrdReader, SpacingsUnknownNegativeAndOutOfRange) {
+  TempDir dir;
+  const auto path = dir / "s.nrrd";
+  const std::vector<std::byte> data(24, std::byte{1});
+  write_attached(path, "type: uint8\ndimension: 3\nsizes: 4 3 2\nspacings: nan -2 0.5\nencoding: raw\n", data);
+  EXPECT_EQ(read_nrrd(path)->spacing(), vec3(1.0f, 2.0f, 0.5f));
+  write_attached(path, "type: uint8\ndimension: 3\nsizes: 4 3 2\nspacings: 1 1e300 1\nencoding: raw\n", data);
+  test::expect_io_error([&] { read_nrrd(path); }, "axis 2 has spacing 1e+300");
+  write_attached(path, "type: uint8\ndimension: 3\nsizes: 4 3 2\nspacings: 1 1 1e-300\nencoding: raw\n", data);
+  test::expect_io_error([&] { read_nrrd(path); }, "axis 3 has spacing 1e-300");
+}
+
 }  // namespace
 }  // namespace penumbra

@@ -52,7 +52,8 @@ std::vector<Preset> presets_from_json(std::string_view text, const std::string& 
   json document;
   try {
     document = json::parse(text.begin(), text.end());
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {
+    // parse_error, and out_of_range for a number beyond a double (1e400).
     fail(source, fmt::format("invalid JSON: {}", e.what()));
   }
   if (document.is_object()) document = json::array({document});

@@ -88,5 +88,9 @@ TEST(ParaviewPreset, ReadsTheXmlColorMapForm) {
   EXPECT_EQ(tf.points()[1].alpha, 1.0f);
 }
 
+TEST(ParaviewPreset, NumbersBeyondADoubleAreIoErrors) {
+  EXPECT_THROW(parse_paraview_preset(R"([{"Name": "x", "RGBPoints": [0, 0, 0, 0, 1e400, 1, 1, 1]}])"), IoError);
+}
+
 }  // namespace
 }  // namespace penumbra

@@ -341,7 +341,8 @@ Scene parse_scene(std::string_view json_text, const std::filesystem::path& base_
   json j;
   try {
     j = json::parse(json_text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {
+    // parse_error, and out_of_range for a number beyond a double (1e400).
     throw InvalidScene("(root)", fmt::format("not valid JSON: {}", e.what()));
   }
   const ObjectReader r(j, "", {"version", "volume", "transfer_function", "shadow_transfer_function", "camera",
@@ -471,8 +472,9 @@ std::string write_scene_json(const Scene& scene) {
                    {"specular", m.specular}, {"shininess", m.shininess}};
   const RenderSettings& rs = scene.render();
   json params = json::object();
-  for (const auto& [name, value] : rs.params) {
-    std::visit([&](const auto& v) { params[name] = v; }, value);
+  for (const auto& entry : rs.params) {
+    // Not a structured binding: clang 14 cannot capture one in the lambda.
+    std::visit([&](const auto& v) { params[entry.first] = v; }, entry.second);
   }
   j["render"] = {{"width", rs.width},         {"height", rs.height}, {"step", rs.step},
                  {"technique", rs.technique}, {"params", params},    {"ert_threshold", rs.ert_threshold},

@@ -30,6 +30,12 @@ struct SceneParseOptions {
   // (for example "meshes[0].file"), into the path to read. Empty: relative to
   // the scene's folder. A server passes its own to keep clients in its data folder.
   std::function<std::filesystem::path(const std::string& file, const std::string& key)> resolve_file;
+  // Read a mesh file and a mesh's texture volume, at the path resolve_file
+  // gave for what is written at `key`. Empty: read_mesh and read_volume. A
+  // server passes its own to share them between sessions, as with volumes.
+  std::function<std::shared_ptr<const TriangleMesh>(const std::filesystem::path& path, const std::string& key)>
+      load_mesh;
+  std::function<std::shared_ptr<const Volume>(const std::filesystem::path& path, const std::string& key)> load_texture;
 };
 
 // Parses scene JSON text; `base_dir` resolves relative paths.

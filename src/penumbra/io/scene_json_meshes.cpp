@@ -65,7 +65,7 @@ DetailFunction read_detail(const json& j, const std::string& section, const std:
     d.texture_file = r.string("texture", "");
     const std::filesystem::path path = resolved(d.texture_file, r.key("texture"), base_dir, options);
     if (!std::filesystem::exists(path)) throw IoError(path.string(), "texture volume not found (" + r.key("texture") + ")");
-    d.texture = read_volume(path);
+    d.texture = options.load_texture ? options.load_texture(path, r.key("texture")) : read_volume(path);
   } else if (r.has("texture")) {
     throw InvalidScene(r.key("texture"), "only a detail of type \"texture\" takes a texture file");
   }
@@ -102,7 +102,7 @@ std::vector<MeshObject> read_meshes(const json& j, const std::filesystem::path& 
       m.source.file = r.string("file", "");
       const std::filesystem::path path = resolved(m.source.file, r.key("file"), base_dir, options);
       if (!std::filesystem::exists(path)) throw IoError(path.string(), "mesh file not found (" + r.key("file") + ")");
-      m.mesh = std::make_shared<TriangleMesh>(read_mesh(path));
+      m.mesh = options.load_mesh ? options.load_mesh(path, r.key("file")) : std::make_shared<TriangleMesh>(read_mesh(path));
     } else {
       m.source.builtin = r.string("builtin", "");
       m.source.resolution = r.integer("resolution", 0);

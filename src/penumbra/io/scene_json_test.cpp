@@ -263,5 +263,17 @@ TEST(SceneJson, RelativeVolumePathsAreRelativeToTheSceneFile) {
 #endif
 }
 
+// nlohmann reports a number beyond a double (1e400) as out_of_range, not as
+// a parse_error: it is still the user's JSON at fault.
+TEST(SceneJson, NumbersBeyondADoubleAreInvalidScenes) {
+  try {
+    parse_scene(R"({"volume": {"builtin": "spheres"}, "camera": {"fov_deg": 1e400}})", ".");
+    ADD_FAILURE() << "1e400 accepted";
+  } catch (const InvalidScene& e) {
+    EXPECT_EQ(e.key(), "(root)");
+    EXPECT_NE(std::string(e.what()).find("1e400"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace penumbra

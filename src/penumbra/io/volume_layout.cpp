@@ -52,8 +52,12 @@ std::shared_ptr<Volume> load_volume(const std::filesystem::path& header, const V
   for (const PayloadSource& source : payloads) read_payload(source, per_payload, cursor, description);
   convert_volume_byte_order(*volume, layout.byte_order);
 
-  volume->set_spacing(layout.spacing);
-  if (layout.origin) volume->set_origin(*layout.origin);
+  try {
+    volume->set_spacing(layout.spacing);
+    if (layout.origin) volume->set_origin(*layout.origin);
+  } catch (const InvalidArgument& e) {
+    throw IoError(display_path(header), e.what());  // a spacing of 1e38 puts the box at infinity
+  }
   volume->set_source(display_path(header));
   return volume;
 }

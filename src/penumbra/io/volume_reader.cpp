@@ -41,8 +41,10 @@ std::shared_ptr<Volume> read_volume(const std::filesystem::path& path) {
     throw IoError(display_path(path), "a .raw file has no dimensions or type; open the .dat or .nhdr header that "
                                       "describes it");
   }
-  throw IoError(display_path(path), fmt::format("unknown volume file extension; supported: {}",
-                                                fmt::join(supported_volume_extensions(), ", ")));
+  throw IoError(display_path(path),
+                fmt::format("unknown volume file extension; supported: {}, and .raw with a .dat or .nhdr of the same "
+                            "name beside it",
+                            fmt::join(supported_volume_extensions(), ", ")));
 }
 
 }  // namespace penumbra

@@ -40,8 +40,12 @@ TEST(VolumeReader, UnknownExtensionListsTheSupportedOnes) {
   TempDir dir;
   test::write_file(dir / "v.tiff", "II*");
   test::expect_io_error([&] { read_volume(dir / "v.tiff"); },
-                        "unknown volume file extension; supported: .nrrd, .nhdr, .mhd, .mha, .nii, .nii.gz, .vti, .dat");
+                        "unknown volume file extension; supported: .nrrd, .nhdr, .mhd, .mha, .nii, .nii.gz, .vti, .dat, and "
+                        ".raw with a .dat or .nhdr of the same name beside it");
   EXPECT_EQ(supported_volume_extensions().size(), 8u);
+  // A file without an extension gets the same whole list.
+  test::write_file(dir / "noextension", "NRRD0004\n");
+  test::expect_io_error([&] { read_volume(dir / "noextension"); }, ".vti, .dat, and .raw with a .dat or .nhdr");
 }
 
 TEST(VolumeReader, MissingFilesAndFoldersGiveIoError) {

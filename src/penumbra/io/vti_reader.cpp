@@ -2,6 +2,7 @@
 
 #include "penumbra/base/error.h"
 #include "penumbra/base/memory_budget.h"
+#include "penumbra/base/numeric_cast.h"
 #include "penumbra/io/base64.h"
 #include "penumbra/io/binary_file.h"
 #include "penumbra/io/byte_order.h"
@@ -140,23 +141,29 @@ void read_binary_array(const VtiContext& context, ByteSource& source, Volume& vo
 
 template <class T> bool parse_ascii_value(std::string_view token, T& out) {
   if constexpr (std::is_floating_point_v<T>) {
-    const auto v = parse_double(token);
-    if (!v) return false;
-    out = static_cast<T>(*v);
+    const auto d = parse_double(token);
+    if (!d) return false;
+    if constexpr (std::is_same_v<T, float>) {
+      // A Float32 array may hold NaN and infinities, but not 1e300.
+      const auto f = to_float(*d);
+      if (!f) return false;
+      out = *f;
+    } else {
+      out = static_cast<T>(*d);
+    }
     return true;
   } else {
-    std::int64_t v = 0;
+    T v = 0;
     const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), v);
-    if (ec != std::errc() || end != token.data() + token.size()) {
-      // Some writers print integers as "12.0".
-      const auto d = parse_double(token);
-      if (!d || *d != std::floor(*d)) return false;
-      v = static_cast<std::int64_t>(*d);
+    if (ec == std::errc() && end == token.data() + token.size()) {
+      out = v;
+      return true;
     }
-    if (v < std::int64_t(std::numeric_limits<T>::min()) || v > std::int64_t(std::numeric_limits<T>::max())) {
-      return false;
-    }
-    out = static_cast<T>(v);
+    // Some writers print integers as "12.0"; 1e30, inf and NaN are no Int16.
+    const auto d = parse_double(token);
+    const std::optional<T> whole = d ? to_exact_integer<T>(*d) : std::nullopt;
+    if (!whole) return false;
+    out = *whole;
     return true;
   }
 }
@@ -292,10 +299,18 @@ std::shared_ptr<Volume> read_vti(const std::filesystem::path& path) {
     const double lo = (*extent)[static_cast<std::size_t>(2 * a)];
     const double hi = (*extent)[static_cast<std::size_t>(2 * a + 1)];
     const double size = hi - lo + 1.0;
-    if (!(size >= 1.0) || size > std::numeric_limits<int>::max() || lo != std::floor(lo) || hi != std::floor(hi)) {
+    if (!(lo == std::floor(lo) && hi == std::floor(hi))) {
+      context.fail(fmt::format("WholeExtent axis {} is {} to {}; extents are integers", a + 1, lo, hi));
+    }
+    if (!(size >= 1.0)) {
       context.fail(fmt::format("WholeExtent axis {} is {} to {}; it must hold at least one point", a + 1, lo, hi));
     }
-    dims[a] = static_cast<int>(size);
+    const auto points = to_integer<int>(size);
+    if (!points) {
+      context.fail(fmt::format("WholeExtent axis {} is {} to {}: {} points, more than the {} an axis can have", a + 1,
+                               lo, hi, size, std::numeric_limits<int>::max()));
+    }
+    dims[a] = *points;
   }
   if (piece) {
     if (const auto piece_extent = numbers(*piece, "Extent"); piece_extent && *piece_extent != *extent) {

@@ -3,6 +3,9 @@
 #include "penumbra/io/base64.h"
 #include "penumbra/io/io_test_support.h"
 
+#include <fmt/format.h>
+
+#include <cmath>
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -102,6 +105,38 @@ TEST(VtiReader, MalformedFilesGiveIoError) {
   expect("<VTKFile type=\"ImageData\"><ImageData WholeExtent=\"0 1 0 0 0 0\"><PointData>"
          "<DataArray type=\"UInt8\" format=\"appended\" offset=\"0\"/></PointData></ImageData></VTKFile>",
          "no <AppendedData>");
+}
+
+std::string ascii_vti(std::string_view type, std::string_view values, std::string_view extent = "0 1 0 0 0 0") {
+  return fmt::format("<VTKFile type='ImageData'><ImageData WholeExtent='{}'><Piece><PointData>"
+                     "<DataArray type='{}' format='ascii'>{}</DataArray></PointData></Piece></ImageData></VTKFile>",
+                     extent, type, values);
+}
+
+// Each of these was undefined behaviour (a double cast to int64) before.
+TEST(VtiReader, AsciiValuesOutsideTheTypeAreErrorsNotUndefinedBehaviour) {
+  TempDir dir;
+  const auto path = dir / "v.vti";
+  for (const char* bad : {"1e30", "-1e30", "inf", "nan", "1234567890123456789012345678901234567890", "32768",
+                          "12.5"}) {
+    test::write_file(path, ascii_vti("Int16", fmt::format("1 {}", bad)));
+    test::expect_io_error([&] { read_vti(path); }, fmt::format("ascii value 1 '{}' is not a valid int16", bad));
+  }
+  test::write_file(path, ascii_vti("Int16", "12.0 -32768"));
+  EXPECT_FLOAT_EQ(read_vti(path)->voxel(0, ivec3(0, 0, 0)), 12.0f);
+  test::write_file(path, ascii_vti("Float32", "1 1e300"));
+  test::expect_io_error([&] { read_vti(path); }, "ascii value 1 '1e300' is not a valid float32");
+  test::write_file(path, ascii_vti("Float32", "nan inf"));  // representable: kept
+  EXPECT_TRUE(std::isnan(read_vti(path)->voxel(0, ivec3(0, 0, 0))));
+}
+
+TEST(VtiReader, AnExtentTooLongForAnAxisSaysSo) {
+  TempDir dir;
+  const auto path = dir / "v.vti";
+  test::write_file(path, ascii_vti("UInt8", "1 2", "0 2147483647 0 0 0 0"));
+  test::expect_io_error([&] { read_vti(path); }, "2147483648 points, more than the 2147483647 an axis can have");
+  test::write_file(path, ascii_vti("UInt8", "1 2", "0 1.5 0 0 0 0"));
+  test::expect_io_error([&] { read_vti(path); }, "extents are integers");
 }
 
 }  // namespace

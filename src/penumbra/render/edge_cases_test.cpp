@@ -2,6 +2,7 @@
 // empty (fully transparent) volumes, a camera inside the volume, a light
 // along the view direction, time steps and jitter.
 #include "penumbra/analysis/image_metrics.h"
+#include "penumbra/base/error.h"
 #include "test_scene.h"
 
 #include <gtest/gtest.h>
@@ -127,6 +128,32 @@ TEST(EdgeCases, JitterChangesPixelsButNotTheMean) {
   const Image jittered = render_with(scene, "emission-absorption");
   EXPECT_GT(rmse(plain, jittered), 1e-3);
   EXPECT_NEAR(testing::mean_rgb(plain, 0, 0, 32, 32).r, testing::mean_rgb(jittered, 0, 0, 32, 32).r, 0.01f);
+}
+
+// A camera so far away that t + step rounds back to t would march for ever.
+TEST(EdgeCases, ACameraBeyondFloatMarchingRangeIsAnError) {
+  Scene scene = lit(procedural_scene("spheres", ivec3(16), 8));
+  Camera far = scene.camera();
+  far.eye = vec3(0.0f, -1e12f, 0.0f);
+  far.target = vec3(0.0f);
+  scene.set_camera(far);
+  try {
+    (void)render_with(scene, "shadow-rays");
+    ADD_FAILURE() << "a camera 1e12 away rendered";
+  } catch (const InvalidScene& e) {
+    EXPECT_EQ(e.key(), "camera.eye");
+  }
+  // Farther still, the distance to the target overflows a float by itself.
+  for (const vec3& eye : {vec3(0.0f, -1e30f, 0.0f), vec3(3e38f, 0.0f, 0.0f)}) {
+    far.eye = eye;
+    far.target = -eye;
+    EXPECT_THROW(scene.set_camera(far), InvalidScene);
+  }
+  // Far but marchable cameras still render.
+  far.eye = vec3(0.0f, -2000.0f, 0.0f);
+  far.target = vec3(0.0f);
+  scene.set_camera(far);
+  EXPECT_TRUE(all_finite(render_with(scene, "shadow-rays")));
 }
 
 }  // namespace

@@ -1,5 +1,9 @@
 #include "penumbra/render/scene_resources.h"
 
+#include "penumbra/base/error.h"
+
+#include <fmt/format.h>
+
 namespace penumbra {
 
 bool SceneResources::update(const Scene& scene, bool normals) {
@@ -29,7 +33,29 @@ bool SceneResources::update(const Scene& scene, bool normals) {
   return changed;
 }
 
+namespace {
+
+// Rays march in float from the eye: beyond about 2^20 steps from the scene,
+// t + step rounds back to t and a march never advances. Such a camera sees
+// the scene as a speck anyway (an orthographic one sees the same from nearer).
+constexpr float kMaxEyeDistanceInSteps = float(1 << 20);
+
+void check_camera_distance(const Scene& scene) {
+  const Box3 box = scene.scene_box();
+  const vec3 eye = scene.camera().eye;
+  const float distance = glm::length(glm::max(glm::max(box.lower - eye, eye - box.upper), vec3(0.0f)));
+  const float limit = kMaxEyeDistanceInSteps * scene.step_world();
+  if (!(distance <= limit)) {
+    throw InvalidScene("camera.eye", fmt::format("is {:.4g} away from the scene, farther than the {:.4g} (2^20 ray "
+                                                 "steps) that rays can march in float precision; move it closer",
+                                                 distance, limit));
+  }
+}
+
+}  // namespace
+
 RenderView SceneResources::view(const Scene& scene) const {
+  check_camera_distance(scene);
   RenderView r;
   r.volume = scene.volume_view();
   r.macrocells = macrocells_.view();

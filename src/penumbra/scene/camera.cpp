@@ -13,6 +13,8 @@ void Camera::validate() const {
     if (!is_finite(v.x) || !is_finite(v.y) || !is_finite(v.z)) throw InvalidScene(name, "must be finite");
   }
   const vec3 d = target - eye;
+  // Components near the float limit overflow the direction (1e38 - -1e38).
+  if (!is_finite(glm::length(d))) throw InvalidScene("camera.eye", "is too far from camera.target: the distance overflows");
   if (glm::length(d) <= 0.0f) throw InvalidScene("camera.target", "must differ from camera.eye");
   if (glm::length(up) <= 0.0f) throw InvalidScene("camera.up", "must not be the zero vector");
   if (glm::length(glm::cross(glm::normalize(d), glm::normalize(up))) < 1e-4f) {

@@ -80,6 +80,26 @@ std::uint64_t Volume::voxel_count() const {
 
 std::uint64_t Volume::frame_bytes() const { return voxel_count() * voxel_size(type_); }
 
+namespace {
+
+// Every corner of a volume's world box lies within +-kMaxWorldCoordinate, so
+// that box extents and their lengths (which square them) stay finite in float:
+// a spacing of 1e38 would put the centred box at infinity.
+constexpr double kMaxWorldCoordinate = 1e18;
+
+void check_box(ivec3 dims, vec3 origin, vec3 spacing, const char* name) {
+  for (int a = 0; a < 3; ++a) {
+    const double far = std::abs(double(origin[a])) + double(dims[a] - 1) * double(spacing[a]);
+    if (!(far <= kMaxWorldCoordinate)) {
+      throw InvalidArgument(name, fmt::format("the volume's box reaches {:.3g} along axis {}, beyond the {:.0e} a "
+                                              "world coordinate may have (spacing {} over {} voxels, origin {})",
+                                              far, a + 1, kMaxWorldCoordinate, spacing[a], dims[a], origin[a]));
+    }
+  }
+}
+
+}  // namespace
+
 void Volume::set_spacing(vec3 spacing) {
   if (!(spacing.x > 0.0f && spacing.y > 0.0f && spacing.z > 0.0f) || !is_finite(spacing.x) ||
       !is_finite(spacing.y) || !is_finite(spacing.z)) {
@@ -87,16 +107,20 @@ void Volume::set_spacing(vec3 spacing) {
                                                  spacing.x, spacing.y, spacing.z));
   }
   const bool centred = origin_ == -0.5f * vec3(dims_ - 1) * spacing_;
+  const vec3 origin = centred ? -0.5f * vec3(dims_ - 1) * spacing : origin_;
+  check_box(dims_, origin, spacing, "spacing");
   spacing_ = spacing;
-  if (centred) center_at_origin();
+  origin_ = origin;
 }
 
 void Volume::set_origin(vec3 origin) {
   if (!is_finite(origin.x) || !is_finite(origin.y) || !is_finite(origin.z)) {
     throw InvalidArgument("origin", "volume origin must be finite");
   }
+  check_box(dims_, origin, spacing_, "origin");
   origin_ = origin;
 }
+
 
 void Volume::center_at_origin() { origin_ = -0.5f * vec3(dims_ - 1) * spacing_; }
 

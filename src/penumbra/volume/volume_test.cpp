@@ -42,6 +42,18 @@ TEST(Volume, IsCentredAtTheOriginByDefault) {
   EXPECT_THROW(v.set_spacing(vec3(0.0f, 1.0f, 1.0f)), InvalidArgument);
 }
 
+// A finite spacing or origin can still put the box where its extent
+// overflows a float; the box stays within 1e18 of the world origin.
+TEST(Volume, TheBoxStaysWithinFloatRange) {
+  Volume v(ivec3(8, 8, 6), VoxelType::UInt8);
+  EXPECT_THROW(v.set_spacing(vec3(1.0f, 1.0f, 2.5e38f)), InvalidArgument);
+  EXPECT_THROW(v.set_spacing(vec3(1e18f, 1.0f, 1.0f)), InvalidArgument);
+  EXPECT_THROW(v.set_origin(vec3(0.0f, -3e38f, 0.0f)), InvalidArgument);
+  EXPECT_EQ(v.spacing(), vec3(1.0f));  // unchanged by the refusals
+  v.set_spacing(vec3(1e16f, 1.0f, 1.0f));
+  EXPECT_FLOAT_EQ(v.world_box().upper.x, 3.5e16f);
+}
+
 TEST(Volume, ValueRangeSkipsNonFiniteVoxelsAndFollowsWrites) {
   Volume v(ivec3(4, 4, 4), VoxelType::Float32, 2);
   for (int f = 0; f < 2; ++f) {

@@ -7,6 +7,8 @@
 #include "penumbra/techniques/pathtrace/path_kernel.h"
 #include "penumbra/techniques/pathtrace/progress_bar.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -60,10 +62,39 @@ struct PixelAccumulator {
   }
 };
 
+// Delta and ratio tracking take on average majorant x distance tentative
+// collisions to cross a macrocell, so a medium dense enough makes a path
+// cost millions of lookups (and at 1e30 the steps vanish below float
+// precision: the walk never ends). Refused beyond this many across the
+// volume's diagonal: such a medium is opaque at a thousandth of a voxel, and
+// every other technique shows it the same at a density 1000 times lower.
+constexpr double kMaxCollisionsAcross = 1e6;
+
+void check_tracking_cost(const Scene& scene, const float* majorants, std::size_t cells, const std::string& section) {
+  const float densest = cells == 0 ? 0.0f : *std::max_element(majorants, majorants + cells);
+  const Box3 box = scene.volume().world_box();
+  const double across = double(densest) * double(glm::length(box.upper - box.lower));
+  if (!(across <= kMaxCollisionsAcross)) {  // NaN too
+    const double density = section == "transfer_function" ? scene.transfer_function().density_scale()
+                                                          : scene.shadow_tf().density_scale();
+    throw InvalidScene(section + ".density_scale",
+                       fmt::format("pathtrace: density_scale {} makes the medium so dense that a path would take "
+                                   "about {:.3g} tentative collisions to cross the volume (at most {:.0g}); use a "
+                                   "density_scale of at most {:.3g}",
+                                   density, across, kMaxCollisionsAcross, density * kMaxCollisionsAcross / across));
+  }
+}
+
 class PathTrace final : public Technique {
  public:
   void prepare(const Scene& scene, const ParameterValues& params) override {
     resources_.update(scene);
+    // The shadow TF's majorants share the macrocell grid (and its cell count).
+    const std::size_t cells = resources_.majorants().majorant.size();
+    check_tracking_cost(scene, resources_.majorants().majorant.data(), cells, "transfer_function");
+    if (scene.shadow_transfer_function()) {
+      check_tracking_cost(scene, resources_.shadow_view(scene).majorants, cells, "shadow_transfer_function");
+    }
     settings_.mode = params.choice("mode") == "single" ? ScatteringMode::Single : ScatteringMode::Multiple;
     settings_.max_bounces = params.integer("max_bounces");
     spp_ = params.integer("spp");

@@ -359,6 +359,41 @@ TEST(PathTrace, AuxBytesAreTheAccumulators) {
   EXPECT_EQ(pathtrace_estimate(*find_technique("shadow-rays").create()), nullptr);
 }
 
+// Delta tracking's cost grows with the majorant: a density that would make a
+// path take millions of collisions (or, at 1e30, never advance) is refused
+// up front, naming the key, instead of rendering for ever.
+TEST(PathTrace, ADensityThatMakesTrackingUnboundedIsRefused) {
+  Scene scene = single_scattering_scene();
+  const TechniqueInfo& info = find_technique("pathtrace");
+  const ParameterValues params(info.parameters);
+  for (const float density : {1e6f, 1e30f}) {
+    TransferFunction tf = scene.transfer_function();
+    tf.set_density_scale(density);
+    scene.set_transfer_function(tf);
+    auto t = info.create();
+    try {
+      t->prepare(scene, params);
+      ADD_FAILURE() << "density_scale " << density << " accepted";
+    } catch (const InvalidScene& e) {
+      EXPECT_EQ(e.key(), "transfer_function.density_scale");
+      EXPECT_NE(std::string(e.what()).find("use a density_scale of at most"), std::string::npos) << e.what();
+    }
+  }
+  // The same for the shadow TF, which shadow rays track.
+  TransferFunction tf = scene.transfer_function();
+  tf.set_density_scale(1.0f);
+  scene.set_transfer_function(tf);
+  TransferFunction dense = tf;
+  dense.set_density_scale(1e30f);
+  scene.set_shadow_transfer_function(dense);
+  EXPECT_THROW(info.create()->prepare(scene, params), InvalidScene);
+  // Dense but bounded media still render.
+  scene.set_shadow_transfer_function(std::nullopt);
+  tf.set_density_scale(100.0f);
+  scene.set_transfer_function(tf);
+  EXPECT_NO_THROW(info.create()->prepare(scene, params));
+}
+
 }  // namespace
 }  // namespace penumbra
 
