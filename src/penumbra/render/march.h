@@ -185,8 +185,10 @@ PENUMBRA_HD void march_rays(const RenderView& v, const Sampler& sampler, Rays& r
   using V = typename L::Vec3;
   using M = typename L::Mask;
   constexpr int W = L::kWidth;
-  // New rays start when this many lanes are idle (or when no lane has a
-  // sample left): one restart costs about what a few packet steps do.
+  // Finished lanes take new rays when this many are idle (or at once when the
+  // stream has no rays left). W, i.e. refill when the whole packet is done,
+  // measured fastest: a partial restart (W / 4) cost more in reloading the
+  // packet than it won in lane utilisation (docs/PERFORMANCE.md, issue 14).
   constexpr int kRestartLanes = W;
   // Per lane: the ray, where it meets a plane, and the packet values (as
   // columns: x[i], y[i], z[i]) to reload after a restart.
