@@ -364,7 +364,9 @@ void hostile_client(int port, const fs::path& data, Clock::time_point start, Clo
         const auto s = c.Post("/api/sessions", "{}", "application/json");
         const int st = s ? s->status : -1;
         record.count("flood-sessions", st);
-        if (st != 201 && st != 503) record.fail(fmt::format("session flood: status {}", st));
+        if (st != 201 && st != 503) {
+          record.fail(fmt::format("session flood: status {} ({})", st, s ? "" : httplib::to_string(s.error())));
+        }
       }
     }
     if (i % 250 == 125) {
@@ -380,7 +382,9 @@ void hostile_client(int port, const fs::path& data, Clock::time_point start, Clo
           const auto f = b.Post((base + "/frame").c_str(), body.dump(), "application/json");
           const int st = f ? f->status : -1;
           record.count("flood-frames", st);
-          if (st != 200 && st != 409 && st != 503) record.fail(fmt::format("frame flood: status {}", st));
+          if (st != 200 && st != 409 && st != 503) {
+            record.fail(fmt::format("frame flood: status {} ({})", st, f ? "" : httplib::to_string(f.error())));
+          }
         });
       }
       for (auto& t : burst) t.join();
