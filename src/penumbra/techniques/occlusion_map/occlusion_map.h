@@ -16,9 +16,11 @@
 //                      the same ambient occlusion per sample (Fig. 11), lights
 //                      unshadowed
 //   shadows            none | hard (a ray with the iso test) | soft (a march
-//                      through the occlusion map)
+//                      through the occlusion map accumulating transmittance,
+//                      occluders at any value above the iso-value)
 //   ambient_occlusion  on/off
-//   ao_combine         max (default) | mean of the four levels' occlusion
+//   ao_combine         max (default) | mean of the four levels' occlusion |
+//                      product of their unoccluded fractions
 //   ao_offset          distance of each level's AO sample from the surface,
 //                      in that level's Gaussian sigmas
 //   ao_lights          AO also darkens the lights (the paper's figures), not
