@@ -107,7 +107,7 @@ class OcclusionMap final : public Technique {
   float iso_ = 0.0f;
   ShadowMode shadows_ = ShadowMode::Soft;
   bool ambient_occlusion_ = true;
-  AoCombine ao_combine_ = AoCombine::Max;
+  AoCombine ao_combine_ = AoCombine::Product;
   float ao_offset_ = 2.0f;
   bool ao_on_lights_ = true;
   float default_spread_ = 0.0f;
@@ -127,7 +127,7 @@ TechniqueInfo occlusion_map_info() {
           ParameterSpec::choice("shadows", "soft", {"none", "hard", "soft"},
                                 "isosurface shadows: none, hard (iso-test ray) or soft (occlusion-map march)"),
           ParameterSpec::flag("ambient_occlusion", true, "ambient occlusion from four pyramid levels along the normal"),
-          ParameterSpec::choice("ao_combine", "max", {"max", "mean", "product"},
+          ParameterSpec::choice("ao_combine", "product", {"max", "mean", "product"},
                                 "combine the four levels' occlusion: max (the paper), mean, or product of unoccluded fractions"),
           ParameterSpec::real("ao_offset", 2.0, 0.0, 8.0,
                               "AO sample distance from the surface, in Gaussian sigmas of each level"),

@@ -19,8 +19,9 @@
 //                      through the occlusion map accumulating transmittance,
 //                      occluders at any value above the iso-value)
 //   ambient_occlusion  on/off
-//   ao_combine         max (default) | mean of the four levels' occlusion |
-//                      product of their unoccluded fractions
+//   ao_combine         max (the paper) | mean of the four levels' occlusion |
+//                      product of their unoccluded fractions (default: the
+//                      closest to brute-force AO, docs/occlusion-map.md)
 //   ao_offset          distance of each level's AO sample from the surface,
 //                      in that level's Gaussian sigmas
 //   ao_lights          AO also darkens the lights (the paper's figures), not
