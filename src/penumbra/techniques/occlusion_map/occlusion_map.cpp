@@ -128,7 +128,8 @@ TechniqueInfo occlusion_map_info() {
                                 "isosurface shadows: none, hard (iso-test ray) or soft (occlusion-map march)"),
           ParameterSpec::flag("ambient_occlusion", true, "ambient occlusion from four pyramid levels along the normal"),
           ParameterSpec::choice("ao_combine", "product", {"max", "mean", "product"},
-                                "combine the four levels' occlusion: max (the paper), mean, or product of unoccluded fractions"),
+                                "combine the four levels' occlusion: max (the paper), mean, or product of the "
+                                "unoccluded fractions"),
           ParameterSpec::real("ao_offset", 2.0, 0.0, 8.0,
                               "AO sample distance from the surface, in Gaussian sigmas of each level"),
           ParameterSpec::flag("ao_lights", true, "AO also darkens the lights, not only the ambient term"),

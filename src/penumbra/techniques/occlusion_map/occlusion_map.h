@@ -21,7 +21,8 @@
 //   ambient_occlusion  on/off
 //   ao_combine         max (the paper) | mean of the four levels' occlusion |
 //                      product of their unoccluded fractions (default: the
-//                      closest to brute-force AO, docs/occlusion-map.md)
+//                      closest to brute-force AO, docs/PERFORMANCE.md, issue
+//                      17 section)
 //   ao_offset          distance of each level's AO sample from the surface,
 //                      in that level's Gaussian sigmas
 //   ao_lights          AO also darkens the lights (the paper's figures), not

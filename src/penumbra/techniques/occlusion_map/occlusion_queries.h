@@ -43,10 +43,10 @@ enum class AoCombine : std::uint8_t { Max, Mean, Product };
 // one soft-shadow sample stands for (the exponent of its transmittance is
 // step / (kShadowSlab sigma)), and the cone's radius in sigmas of the region
 // that stands for it. Both chosen by the thin-plate and penumbra tests against
-// a brute-force cone (occlusion_reference_test.cpp; the sweep is in
-// docs/occlusion-map.md): a slab of 1 sigma lets 31 % through a one-voxel
-// plate, 0.45 sigma 7 %; a cone of 2 sigmas gives penumbrae 0.6-0.7x the
-// reference's width, 1.5 sigmas 0.85-1.0x.
+// a brute-force cone (occlusion_reference_test.cpp; docs/PERFORMANCE.md,
+// issue 17 section): a slab of 1 sigma lets 31 % through a one-voxel plate,
+// 0.45 sigma 7 %; a cone of 2 sigmas gives penumbrae 0.6-0.7x the
+// reference's width, 1.5 sigmas 0.84-1.02x.
 inline constexpr float kShadowSlab = 0.45f;
 inline constexpr float kConeSigmas = 1.5f;
 // Transmittance below which the march stops (the light is gone).

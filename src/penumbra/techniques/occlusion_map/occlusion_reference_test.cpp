@@ -4,7 +4,7 @@
 // iso-test rays on small volumes (procedural, a downsampled engine CT, the
 // nucleon simulation, a downsampled MRI), as correlation and mean absolute
 // error over the pixels of a small image. The DISABLED_ sweep prints the
-// table behind the defaults (docs/occlusion-map.md).
+// table behind the defaults (docs/PERFORMANCE.md, issue 17 section).
 #include "penumbra/base/rng.h"
 #include "penumbra/io/io_test_support.h"
 #include "penumbra/io/volume_reader.h"
@@ -94,8 +94,8 @@ struct ShadowCase {
     OcclusionQueries<K> q;
     q.pyramid = pyramid.view<K>();
     q.box = volume->world_box();
-    // The receivers stand in empty space: nothing of their own to take out.
-    return q.soft_shadow(p, n, to_light, kInfinity, std::tan(glm::radians(theta_deg)), reference.iso, 0.0f);
+    // The receivers stand in empty space: nothing of their own to take out (-1).
+    return q.soft_shadow(p, n, to_light, kInfinity, std::tan(glm::radians(theta_deg)), reference.iso, -1.0f);
   }
 };
 
@@ -355,6 +355,9 @@ void report(const char* name, const std::string& settings, const AoComparison& c
               name, settings.c_str(), c.pixels, c.correlation, c.mae, c.mean_map, c.mean_ref);
 }
 
+template <int K>
+float old_soft_shadow(const OcclusionQueries<K>&, vec3, vec3, vec3, float, float) { return -1.0f; }
+
 struct AoDataSet {
   const char* name;
   std::shared_ptr<Volume> volume;
@@ -422,6 +425,74 @@ TEST(OcclusionMapReference, AmbientOcclusionTracksBruteForceRays) {
     }
   }
   EXPECT_GE(checked, 2);
+}
+
+// Soft shadows on the AO data sets against a brute-force cone (3 degrees, 12
+// rings = 432 rays) per surface pixel, light from the upper front: the
+// correlation and MAE of the visibility, and the share of the reference's
+// umbra pixels (visibility < 0.1) that the map leaves more than half lit.
+TEST(OcclusionMapReference, DISABLED_SoftShadowsOnDataSets) {
+  for (const AoDataSet& set : ao_data_sets()) {
+    const ShadowCase c(set.volume, MomentPyramidSettings{}, set.iso);
+    Scene scene = procedural_scene("spheres", set.volume->dims(), 40);
+    scene.set_volume(set.volume);
+    scene.set_camera(Camera::framing(set.volume->world_box(), set.view_dir));
+    const RenderView& view = c.reference.view;
+    SceneResources resources;
+    resources.update(scene);
+    const RenderView eye = resources.view(scene);
+    const vec3 to_light = glm::normalize(vec3(-0.5f, -0.4f, 1.0f));
+    std::vector<double> map, ref;
+    int umbra = 0, leaking = 0;
+    with_sampler(view.volume, [&](const auto& sampler) {
+      for (int y = 0; y < 40; ++y) {
+        for (int x = 0; x < 40; ++x) {
+          const Ray ray = eye.camera.pixel_ray(float(x) + 0.5f, float(y) + 0.5f, 40, 40);
+          std::uint64_t samples = 0;
+          const float t = first_iso_crossing(view, sampler, ray, volume_interval(view, ray, 0.0f, kInfinity),
+                                             set.iso, samples);
+          if (!(t < kInfinity)) continue;
+          const vec3 p = ray.at(t);
+          const vec3 g = sampler.gradient(view.volume.index_from_world(p)) / view.volume.spacing;
+          if (!(glm::length(g) > 0.0f)) continue;
+          vec3 n = -glm::normalize(g);
+          if (glm::dot(n, ray.direction) > 0.0f) n = -n;
+          if (glm::dot(n, to_light) <= 0.05f) continue;  // self-shadowed by its own facing
+          const float under = sampler(view.volume.index_from_world(p - 0.5f * n));
+          OcclusionQueries<2> q;
+          q.pyramid = c.pyramid.view<2>();
+          q.box = set.volume->world_box();
+          const float spread = std::tan(glm::radians(3.0f));
+          const float u = glm::max(set.iso, under);
+          float m = q.soft_shadow(p, n, to_light, kInfinity, spread, set.iso, u);
+          if (std::getenv("OLD_MARCH")) m = old_soft_shadow(q, p, n, to_light, spread, u);
+          const float r = c.reference.visibility(p, n, to_light, 3.0f);
+          map.push_back(m);
+          ref.push_back(r);
+          if (r < 0.1f) {
+            ++umbra;
+            leaking += m > 0.5f ? 1 : 0;
+          }
+        }
+      }
+      return 0;
+    });
+    double sm = 0, sr = 0, smm = 0, srr = 0, smr = 0, mae = 0;
+    for (std::size_t i = 0; i < map.size(); ++i) {
+      sm += map[i];
+      sr += ref[i];
+      smm += map[i] * map[i];
+      srr += ref[i] * ref[i];
+      smr += map[i] * ref[i];
+      mae += std::abs(map[i] - ref[i]);
+    }
+    const double n = double(map.size());
+    const double cov = smr / n - sm / n * sr / n;
+    const double corr = cov / std::sqrt((smm / n - sm * sm / n / n) * (srr / n - sr * sr / n / n));
+    std::printf("[occlusion-map shadow reference] %-18s %4d px: correlation %.3f, MAE %.3f, mean %.3f vs %.3f, "
+                "umbra px more than half lit %d of %d\n",
+                set.name, int(n), corr, mae / n, sm / n, sr / n, leaking, umbra);
+  }
 }
 
 // The measurement behind the AO defaults: every data set, for both moment
