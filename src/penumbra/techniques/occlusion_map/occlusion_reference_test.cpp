@@ -21,6 +21,8 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <optional>
+#include <vector>
 
 namespace penumbra {
 namespace {
@@ -41,6 +43,60 @@ std::shared_ptr<Volume> field(ivec3 dims, const std::function<float(vec3)>& f) {
 
 // 1 inside, 0 outside, a one-voxel linear ramp across the boundary.
 float solid(float signed_distance) { return glm::clamp(0.5f - signed_distance, 0.0f, 1.0f); }
+
+// The first iso crossing of every pixel's ray of an image_size^2 view through
+// `eye` (an IsoOccupancy view `iso_view` of the same volume finds it), with
+// the viewer-facing unit normal of the central-difference gradient:
+// f(x, y, p, n, sampler) for each pixel that hits a surface with a gradient.
+template <class F>
+void for_each_surface_pixel(const RenderView& iso_view, const RenderView& eye, float iso, int image_size, F&& f) {
+  with_sampler(iso_view.volume, [&](const auto& sampler) {
+    for (int y = 0; y < image_size; ++y) {
+      for (int x = 0; x < image_size; ++x) {
+        const Ray ray = eye.camera.pixel_ray(float(x) + 0.5f, float(y) + 0.5f, image_size, image_size);
+        std::uint64_t samples = 0;
+        const float t = first_iso_crossing(iso_view, sampler, ray, volume_interval(iso_view, ray, 0.0f, kInfinity),
+                                           iso, samples);
+        if (!(t < kInfinity)) continue;
+        const vec3 p = ray.at(t);
+        const vec3 g = sampler.gradient(iso_view.volume.index_from_world(p)) / iso_view.volume.spacing;
+        if (!(glm::length(g) > 0.0f)) continue;
+        vec3 n = -glm::normalize(g);
+        if (glm::dot(n, ray.direction) > 0.0f) n = -n;
+        f(x, y, p, n, sampler);
+      }
+    }
+    return 0;
+  });
+}
+
+// Pearson correlation and mean absolute error of two series.
+struct Agreement {
+  double correlation = 0.0, mae = 0.0, mean_map = 0.0, mean_ref = 0.0;
+  int pixels = 0;
+};
+Agreement agreement(const std::vector<double>& map, const std::vector<double>& ref) {
+  Agreement c;
+  c.pixels = int(map.size());
+  if (c.pixels < 2) return c;
+  double smm = 0, srr = 0, smr = 0;
+  for (std::size_t i = 0; i < map.size(); ++i) {
+    c.mean_map += map[i];
+    c.mean_ref += ref[i];
+    smm += map[i] * map[i];
+    srr += ref[i] * ref[i];
+    smr += map[i] * ref[i];
+    c.mae += std::abs(map[i] - ref[i]);
+  }
+  const double n = double(map.size());
+  c.mean_map /= n;
+  c.mean_ref /= n;
+  c.mae /= n;
+  const double cov = smr / n - c.mean_map * c.mean_ref;
+  const double vm = smm / n - c.mean_map * c.mean_map, vr = srr / n - c.mean_ref * c.mean_ref;
+  c.correlation = vm > 0.0 && vr > 0.0 ? cov / std::sqrt(vm * vr) : 0.0;
+  return c;
+}
 
 // Brute-force visibility of a uniform disk light of angular radius theta
 // (direction `to_light`) from p: `rays` rays on concentric strata of the cone,
@@ -215,22 +271,12 @@ TEST(OcclusionMapReference, LessDenseOccludersShadowDenseReceivers) {
   const RenderView view = occupancy.apply(resources.view(scene));
   double under = 0.0, beyond = 0.0;
   int n_under = 0, n_beyond = 0;
-  with_sampler(view.volume, [&](const auto& sampler) {
-    for (int y = 0; y < 48; ++y) {
-      for (int x = 0; x < 48; ++x) {
-        const Ray ray = view.camera.pixel_ray(float(x) + 0.5f, float(y) + 0.5f, 48, 48);
-        std::uint64_t samples = 0;
-        const float t = first_iso_crossing(view, sampler, ray, volume_interval(view, ray, 0.0f, kInfinity), 0.3f,
-                                           samples);
-        if (!(t < kInfinity) || !(open.at(x, y).g > 0.05f)) continue;
-        const vec3 p = ray.at(t);
-        if (std::abs(p.z + 12.0f) > 0.5f || std::abs(p.x) > 18.0f || std::abs(p.x) < 8.0f) continue;
-        const double ratio = double(shadowed.at(x, y).g / open.at(x, y).g);
-        (p.x < 0.0f ? under : beyond) += ratio;
-        ++(p.x < 0.0f ? n_under : n_beyond);
-      }
-    }
-    return 0;
+  for_each_surface_pixel(view, view, 0.3f, 48, [&](int x, int y, vec3 p, vec3, const auto&) {
+    if (!(open.at(x, y).g > 0.05f)) return;
+    if (std::abs(p.z + 12.0f) > 0.5f || std::abs(p.x) > 18.0f || std::abs(p.x) < 8.0f) return;
+    const double ratio = double(shadowed.at(x, y).g / open.at(x, y).g);
+    (p.x < 0.0f ? under : beyond) += ratio;
+    ++(p.x < 0.0f ? n_under : n_beyond);
   });
   ASSERT_GT(n_under, 10);
   ASSERT_GT(n_beyond, 10);
@@ -265,16 +311,11 @@ std::shared_ptr<Volume> shared_volume(const std::string& file, int factor) {
   return volume;
 }
 
-struct AoComparison {
-  double correlation = 0.0, mae = 0.0, mean_map = 0.0, mean_ref = 0.0;
-  int pixels = 0;
-};
-
 // Ambient occlusion of every surface pixel of a small image: the technique's
 // (the ratio of an ambient-only image with AO to one without) against
 // `rays` cosine-weighted iso-test rays (the hard-shadow test) from the
 // same hit point, to the volume's boundary.
-AoComparison compare_ao(const std::shared_ptr<Volume>& volume, float iso, vec3 view_dir,
+Agreement compare_ao(const std::shared_ptr<Volume>& volume, float iso, vec3 view_dir,
                         const ParameterSettings& extra, int image_size = 40, int rays = 64) {
   Scene scene = procedural_scene("spheres", volume->dims(), image_size);
   scene.set_volume(volume);
@@ -294,69 +335,32 @@ AoComparison compare_ao(const std::shared_ptr<Volume>& volume, float iso, vec3 v
   const IsoOccupancy occupancy(resources.macrocells(), iso);
   const RenderView view = occupancy.apply(resources.view(scene));
   std::vector<double> map, ref;
-  with_sampler(view.volume, [&](const auto& sampler) {
-    const int strata = int(std::lround(std::sqrt(double(rays))));
-    Pcg32 rng(3);
-    for (int y = 0; y < image_size; ++y) {
-      for (int x = 0; x < image_size; ++x) {
-        if (with.at(x, y).a != 1.0f || !(without.at(x, y).g > 1e-3f)) continue;
-        const Ray ray = view.camera.pixel_ray(float(x) + 0.5f, float(y) + 0.5f, image_size, image_size);
-        std::uint64_t samples = 0;
-        const float t = first_iso_crossing(view, sampler, ray, volume_interval(view, ray, 0.0f, kInfinity), iso,
-                                           samples);
-        if (!(t < kInfinity)) continue;
-        const vec3 p = ray.at(t);
-        const vec3 g = sampler.gradient(view.volume.index_from_world(p)) / view.volume.spacing;
-        if (!(glm::length(g) > 0.0f)) continue;
-        vec3 n = -glm::normalize(g);
-        if (glm::dot(n, ray.direction) > 0.0f) n = -n;
-        const vec3 a = glm::normalize(glm::cross(n, std::abs(n.x) < 0.9f ? vec3(1, 0, 0) : vec3(0, 1, 0)));
-        const vec3 b = glm::cross(n, a);
-        int open = 0;
-        for (int i = 0; i < strata; ++i) {
-          for (int j = 0; j < strata; ++j) {
-            const float u1 = (float(i) + rng.next_float()) / float(strata);
-            const float u2 = (float(j) + rng.next_float()) / float(strata);
-            const float r = std::sqrt(u1), phi = 6.2831853f * u2;
-            const vec3 d = r * std::cos(phi) * a + r * std::sin(phi) * b + std::sqrt(1.0f - u1) * n;
-            open += iso_blocks(view, sampler, Ray{p + n * view.volume.min_spacing(), d}, kInfinity, iso) ? 0 : 1;
-          }
-        }
-        ref.push_back(double(open) / double(strata * strata));
-        map.push_back(double(with.at(x, y).g / without.at(x, y).g));
+  const int strata = int(std::lround(std::sqrt(double(rays))));
+  Pcg32 rng(3);
+  for_each_surface_pixel(view, view, iso, image_size, [&](int x, int y, vec3 p, vec3 n, const auto& sampler) {
+    if (with.at(x, y).a != 1.0f || !(without.at(x, y).g > 1e-3f)) return;
+    const vec3 a = glm::normalize(glm::cross(n, std::abs(n.x) < 0.9f ? vec3(1, 0, 0) : vec3(0, 1, 0)));
+    const vec3 b = glm::cross(n, a);
+    int open = 0;
+    for (int i = 0; i < strata; ++i) {
+      for (int j = 0; j < strata; ++j) {
+        const float u1 = (float(i) + rng.next_float()) / float(strata);
+        const float u2 = (float(j) + rng.next_float()) / float(strata);
+        const float r = std::sqrt(u1), phi = 6.2831853f * u2;
+        const vec3 d = r * std::cos(phi) * a + r * std::sin(phi) * b + std::sqrt(1.0f - u1) * n;
+        open += iso_blocks(view, sampler, Ray{p + n * view.volume.min_spacing(), d}, kInfinity, iso) ? 0 : 1;
       }
     }
-    return 0;
+    ref.push_back(double(open) / double(strata * strata));
+    map.push_back(double(with.at(x, y).g / without.at(x, y).g));
   });
-  AoComparison c;
-  c.pixels = int(map.size());
-  if (c.pixels < 2) return c;
-  double sm = 0, sr = 0, smm = 0, srr = 0, smr = 0;
-  for (std::size_t i = 0; i < map.size(); ++i) {
-    sm += map[i];
-    sr += ref[i];
-    smm += map[i] * map[i];
-    srr += ref[i] * ref[i];
-    smr += map[i] * ref[i];
-    c.mae += std::abs(map[i] - ref[i]);
-  }
-  const double n = double(map.size());
-  c.mean_map = sm / n;
-  c.mean_ref = sr / n;
-  c.mae /= n;
-  const double cov = smr / n - c.mean_map * c.mean_ref;
-  const double vm = smm / n - c.mean_map * c.mean_map, vr = srr / n - c.mean_ref * c.mean_ref;
-  c.correlation = vm > 0.0 && vr > 0.0 ? cov / std::sqrt(vm * vr) : 0.0;
-  return c;
+  return agreement(map, ref);
 }
 
-void report(const char* name, const std::string& settings, const AoComparison& c) {
+void report(const char* name, const std::string& settings, const Agreement& c) {
   std::printf("[occlusion-map ao reference] %-22s %-28s %4d px: correlation %.3f, MAE %.3f (mean %.3f vs %.3f)\n",
               name, settings.c_str(), c.pixels, c.correlation, c.mae, c.mean_map, c.mean_ref);
 }
-
-template <int K>
-float old_soft_shadow(const OcclusionQueries<K>&, vec3, vec3, vec3, float, float) { return -1.0f; }
 
 struct AoDataSet {
   const char* name;
@@ -409,7 +413,7 @@ TEST(OcclusionMapReference, AmbientOcclusionTracksBruteForceRays) {
                           {"mri-brainsmall/2", 0.88, 0.14}};
   int checked = 0;
   for (const AoDataSet& set : ao_data_sets()) {
-    const AoComparison c = compare_ao(set.volume, set.iso, set.view_dir, {});
+    const Agreement c = compare_ao(set.volume, set.iso, set.view_dir, {});
     report(set.name, "defaults", c);
     ASSERT_GT(c.pixels, 40) << set.name;
     for (const Bound& b : bounds) {
@@ -419,7 +423,7 @@ TEST(OcclusionMapReference, AmbientOcclusionTracksBruteForceRays) {
       EXPECT_LT(c.mae, b.mae) << set.name;
     }
     if (std::string(set.name) == "engine-ct/4" || std::string(set.name) == "mri-brainsmall/2") {
-      const AoComparison paper = compare_ao(set.volume, set.iso, set.view_dir, {{"ao_combine", std::string("max")}});
+      const Agreement paper = compare_ao(set.volume, set.iso, set.view_dir, {{"ao_combine", std::string("max")}});
       report(set.name, "ao_combine max", paper);
       EXPECT_LT(c.mae, paper.mae) << set.name;
     }
@@ -444,54 +448,26 @@ TEST(OcclusionMapReference, DISABLED_SoftShadowsOnDataSets) {
     const vec3 to_light = glm::normalize(vec3(-0.5f, -0.4f, 1.0f));
     std::vector<double> map, ref;
     int umbra = 0, leaking = 0;
-    with_sampler(view.volume, [&](const auto& sampler) {
-      for (int y = 0; y < 40; ++y) {
-        for (int x = 0; x < 40; ++x) {
-          const Ray ray = eye.camera.pixel_ray(float(x) + 0.5f, float(y) + 0.5f, 40, 40);
-          std::uint64_t samples = 0;
-          const float t = first_iso_crossing(view, sampler, ray, volume_interval(view, ray, 0.0f, kInfinity),
-                                             set.iso, samples);
-          if (!(t < kInfinity)) continue;
-          const vec3 p = ray.at(t);
-          const vec3 g = sampler.gradient(view.volume.index_from_world(p)) / view.volume.spacing;
-          if (!(glm::length(g) > 0.0f)) continue;
-          vec3 n = -glm::normalize(g);
-          if (glm::dot(n, ray.direction) > 0.0f) n = -n;
-          if (glm::dot(n, to_light) <= 0.05f) continue;  // self-shadowed by its own facing
-          const float under = sampler(view.volume.index_from_world(p - 0.5f * n));
-          OcclusionQueries<2> q;
-          q.pyramid = c.pyramid.view<2>();
-          q.box = set.volume->world_box();
-          const float spread = std::tan(glm::radians(3.0f));
-          const float u = glm::max(set.iso, under);
-          float m = q.soft_shadow(p, n, to_light, kInfinity, spread, set.iso, u);
-          if (std::getenv("OLD_MARCH")) m = old_soft_shadow(q, p, n, to_light, spread, u);
-          const float r = c.reference.visibility(p, n, to_light, 3.0f);
-          map.push_back(m);
-          ref.push_back(r);
-          if (r < 0.1f) {
-            ++umbra;
-            leaking += m > 0.5f ? 1 : 0;
-          }
-        }
+    for_each_surface_pixel(view, eye, set.iso, 40, [&](int, int, vec3 p, vec3 n, const auto& sampler) {
+      if (glm::dot(n, to_light) <= 0.05f) return;  // turned away from the light
+      const float under = sampler(view.volume.index_from_world(p - 0.5f * n));
+      OcclusionQueries<2> q;
+      q.pyramid = c.pyramid.view<2>();
+      q.box = set.volume->world_box();
+      const float m = q.soft_shadow(p, n, to_light, kInfinity, std::tan(glm::radians(3.0f)), set.iso,
+                                    glm::max(set.iso, under));
+      const float r = c.reference.visibility(p, n, to_light, 3.0f);
+      map.push_back(m);
+      ref.push_back(r);
+      if (r < 0.1f) {
+        ++umbra;
+        leaking += m > 0.5f ? 1 : 0;
       }
-      return 0;
     });
-    double sm = 0, sr = 0, smm = 0, srr = 0, smr = 0, mae = 0;
-    for (std::size_t i = 0; i < map.size(); ++i) {
-      sm += map[i];
-      sr += ref[i];
-      smm += map[i] * map[i];
-      srr += ref[i] * ref[i];
-      smr += map[i] * ref[i];
-      mae += std::abs(map[i] - ref[i]);
-    }
-    const double n = double(map.size());
-    const double cov = smr / n - sm / n * sr / n;
-    const double corr = cov / std::sqrt((smm / n - sm * sm / n / n) * (srr / n - sr * sr / n / n));
+    const Agreement a = agreement(map, ref);
     std::printf("[occlusion-map shadow reference] %-18s %4d px: correlation %.3f, MAE %.3f, mean %.3f vs %.3f, "
                 "umbra px more than half lit %d of %d\n",
-                set.name, int(n), corr, mae / n, sm / n, sr / n, leaking, umbra);
+                set.name, a.pixels, a.correlation, a.mae, a.mean_map, a.mean_ref, leaking, umbra);
   }
 }
 
