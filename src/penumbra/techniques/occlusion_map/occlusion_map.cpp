@@ -43,7 +43,8 @@ class OcclusionMap final : public Technique {
     }
     shadows_ = dvr_ ? ShadowMode::None : shadow_mode(params.choice("shadows"));
     ambient_occlusion_ = params.flag("ambient_occlusion");
-    ao_mean_ = params.choice("ao_combine") == "mean";
+    const std::string& combine = params.choice("ao_combine");
+    ao_combine_ = combine == "mean" ? AoCombine::Mean : (combine == "product" ? AoCombine::Product : AoCombine::Max);
     ao_offset_ = float(params.number("ao_offset"));
     ao_on_lights_ = params.flag("ao_lights");
     default_spread_ = std::tan(glm::radians(float(params.number("light_size_deg"))));
@@ -74,7 +75,7 @@ class OcclusionMap final : public Technique {
     setup.queries.pyramid = pyramid_.view<K>();
     setup.queries.box = lit.box;
     setup.queries.ao_offset = ao_offset_;
-    setup.queries.ao_mean = ao_mean_;
+    setup.queries.ao_combine = ao_combine_;
     setup.queries.default_spread = default_spread_;
     const vec2 range = pyramid_.value_range();
     setup.normalise = ValueNormalisation{range.x, range.y > range.x ? 1.0f / (range.y - range.x) : 1.0f};
@@ -106,7 +107,7 @@ class OcclusionMap final : public Technique {
   float iso_ = 0.0f;
   ShadowMode shadows_ = ShadowMode::Soft;
   bool ambient_occlusion_ = true;
-  bool ao_mean_ = false;
+  AoCombine ao_combine_ = AoCombine::Product;
   float ao_offset_ = 2.0f;
   bool ao_on_lights_ = true;
   float default_spread_ = 0.0f;
@@ -126,7 +127,9 @@ TechniqueInfo occlusion_map_info() {
           ParameterSpec::choice("shadows", "soft", {"none", "hard", "soft"},
                                 "isosurface shadows: none, hard (iso-test ray) or soft (occlusion-map march)"),
           ParameterSpec::flag("ambient_occlusion", true, "ambient occlusion from four pyramid levels along the normal"),
-          ParameterSpec::choice("ao_combine", "max", {"max", "mean"}, "combine the four levels' occlusion by max or mean"),
+          ParameterSpec::choice("ao_combine", "product", {"max", "mean", "product"},
+                                "combine the four levels' occlusion: max (the paper), mean, or product of the "
+                                "unoccluded fractions"),
           ParameterSpec::real("ao_offset", 2.0, 0.0, 8.0,
                               "AO sample distance from the surface, in Gaussian sigmas of each level"),
           ParameterSpec::flag("ao_lights", true, "AO also darkens the lights, not only the ambient term"),

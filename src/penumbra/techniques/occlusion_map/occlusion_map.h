@@ -16,9 +16,13 @@
 //                      the same ambient occlusion per sample (Fig. 11), lights
 //                      unshadowed
 //   shadows            none | hard (a ray with the iso test) | soft (a march
-//                      through the occlusion map)
+//                      through the occlusion map accumulating transmittance,
+//                      occluders at any value above the iso-value)
 //   ambient_occlusion  on/off
-//   ao_combine         max (default) | mean of the four levels' occlusion
+//   ao_combine         max (the paper) | mean of the four levels' occlusion |
+//                      product of their unoccluded fractions (default: the
+//                      closest to brute-force AO, docs/PERFORMANCE.md, issue
+//                      17 section)
 //   ao_offset          distance of each level's AO sample from the surface,
 //                      in that level's Gaussian sigmas
 //   ao_lights          AO also darkens the lights (the paper's figures), not

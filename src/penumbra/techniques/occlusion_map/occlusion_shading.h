@@ -41,7 +41,8 @@ template <int K, class Sampler> struct SurfaceVisibility {
   const OcclusionShadingSetup<K>* setup;
   Sampler sampler;
   vec3 normal;        // unit, pointing away from the occluding side
-  float query;        // normalised occlusion query value t
+  float query;        // normalised occlusion query value t (ambient occlusion)
+  float own_value;    // normalised value under the surface (negative: a plane, no volume under it)
   float ambient_occ;  // multiplies every light (1 when AO darkens only the ambient term)
 
   PENUMBRA_HD vec3 operator()(int light, vec3 p, const LightSample& ls) const {
@@ -53,7 +54,9 @@ template <int K, class Sampler> struct SurfaceVisibility {
       if (iso_blocks(*s.iso_view, sampler, Ray{start, ls.to_light}, ls.distance, s.iso)) return vec3(0.0f);
     } else if (s.shadows == ShadowMode::Soft) {
       const float spread = s.queries.light_spread(s.iso_view->lights[light], p);
-      visible *= s.queries.soft_shadow(p, normal, ls.to_light, ls.distance, spread, query);
+      // Every occluder above the iso-value blocks the light, also one less
+      // dense than the material under this surface.
+      visible *= s.queries.soft_shadow(p, normal, ls.to_light, ls.distance, spread, s.normalise(s.iso), own_value);
     }
     return vec3(visible);
   }
@@ -91,7 +94,7 @@ template <int K, class Sampler> struct IsosurfaceShader {
     const float ao = s.ambient_occlusion ? s.queries.ambient(p, n, query) : 1.0f;
     using Visibility = SurfaceVisibility<K, Sampler>;
     const ScatteringLighting<Visibility> lighting{
-        s.lit_view, Visibility{setup, sampler, n, query, s.ao_on_lights ? ao : 1.0f}, Shading::Phong};
+        s.lit_view, Visibility{setup, sampler, n, query, query, s.ao_on_lights ? ao : 1.0f}, Shading::Phong};
     const SamplePoint sample{p, index, s.iso, s.iso_color, 0.0f, ray_dir};
     return lighting.sample(sample) + s.lit_view->material.albedo * s.iso_color * (s.ambient * ao);
   }
@@ -104,7 +107,7 @@ template <int K, class Sampler> struct IsosurfaceShader {
     const float ao = s.ambient_occlusion ? s.queries.ambient(h.position, facing, query) : 1.0f;
     using Visibility = SurfaceVisibility<K, Sampler>;
     const ScatteringLighting<Visibility> lighting{
-        s.lit_view, Visibility{setup, sampler, facing, query, s.ao_on_lights ? ao : 1.0f}, Shading::Phong};
+        s.lit_view, Visibility{setup, sampler, facing, query, -1.0f, s.ao_on_lights ? ao : 1.0f}, Shading::Phong};
     return lighting.plane(h) + plane.color * (s.ambient * ao);
   }
 };
