@@ -9,6 +9,8 @@
 
 #include <thread>
 
+#include <netinet/in.h>
+#include <netinet/tcp.h>
 #include <sys/socket.h>
 
 namespace penumbra::server {
@@ -19,6 +21,7 @@ struct HttpServer::Impl {
   ServerContext context;
   httplib::Server http;
   int port = -1;
+  int listen_fd = -1;  // the socket httplib listens on, as its socket options callback saw it
   std::thread thread;
 };
 
@@ -32,10 +35,13 @@ HttpServer::HttpServer(ServerOptions options) : impl_(std::make_unique<Impl>(std
   impl_->http.set_read_timeout(10);
   impl_->http.set_write_timeout(30);
   // httplib's default also sets SO_REUSEPORT, which lets a second server
-  // bind the same port and take half of the connections (and sessions).
-  impl_->http.set_socket_options([](int socket) {
+  // bind the same port and take half of the connections (and sessions). The
+  // callback runs for the listening socket only, before it binds; bind()
+  // raises that socket's backlog afterwards.
+  impl_->http.set_socket_options([impl = impl_.get()](int socket) {
     const int yes = 1;
     ::setsockopt(socket, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+    impl->listen_fd = socket;
   });
   add_routes(impl_->http, impl_->context);
 }
@@ -54,6 +60,12 @@ int HttpServer::bind() {
   if (impl_->port <= 0) {
     impl_->port = -1;
     throw IoError(fmt::format("{}:{}", o.host, o.port), "cannot listen there (address in use or not local?)");
+  }
+  // listen() again on a listening socket sets its backlog (see
+  // ServerOptions::listen_backlog for why httplib's 5 is too few).
+  if (impl_->listen_fd < 0 || ::listen(impl_->listen_fd, std::max(o.listen_backlog, 5)) != 0) {
+    impl_->port = -1;
+    throw IoError(fmt::format("{}:{}", o.host, o.port), "cannot set the listen backlog");
   }
   return impl_->port;
 }
@@ -77,6 +89,19 @@ void HttpServer::stop() {
 }
 
 int HttpServer::port() const { return impl_->port; }
+
+int HttpServer::listen_backlog() const {
+  if (impl_->port < 0 || impl_->listen_fd < 0) return -1;
+#ifdef __linux__
+  // For a listening socket TCP_INFO reports the backlog in tcpi_sacked.
+  tcp_info info{};
+  socklen_t size = sizeof info;
+  if (::getsockopt(impl_->listen_fd, IPPROTO_TCP, TCP_INFO, &info, &size) == 0 && info.tcpi_state == TCP_LISTEN) {
+    return int(info.tcpi_sacked);
+  }
+#endif
+  return -1;
+}
 
 const ServerOptions& HttpServer::options() const { return impl_->context.options; }
 

@@ -48,6 +48,15 @@ struct ServerOptions {
   int max_waiting_renders = 16;
   int max_waiting_renders_per_session = 4;  // so one client's flood cannot fill the queue
   int http_threads = 48;  // idle keep-alive connections hold one each
+  // Connections the kernel queues for the accept loop. httplib listens with
+  // a backlog of 5 (compiled into Debian's libcpp-httplib). A burst of
+  // connections while the accept thread waits for a busy CPU overflows it:
+  // the kernel drops SYNs (the client retries 1 s, 3 s later) or answers with
+  // SYN cookies, and some of those connections were reset after the client
+  // had sent its request, which then got no answer at all (docs/RELIABILITY.md,
+  // the load test). bind() raises it to this; the kernel caps it at
+  // net.core.somaxconn.
+  int listen_backlog = 1024;
   std::size_t max_sessions = 16;
   std::chrono::seconds session_idle_timeout{3600};
   // A session used within this long is never evicted to make room for a new
@@ -78,6 +87,9 @@ class HttpServer {
   void stop();
 
   int port() const;
+  // The listening socket's backlog as the kernel reports it (Linux), -1
+  // before bind() or where unknown.
+  int listen_backlog() const;
   const ServerOptions& options() const;
   RenderQueue& render_queue();
 

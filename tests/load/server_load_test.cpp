@@ -52,6 +52,7 @@ struct Record {
   std::vector<std::string> failures;
   std::map<std::string, int> statuses;  // "class status" -> count, e.g. "well-formed 200"
   std::vector<double> cheap_ms;         // latencies of GET scene / GET techniques during the load
+  std::vector<double> flood_ms;         // latencies of the frame bursts' requests, answered or not
   int requests = 0;
 
   void count(const std::string& cls, int status) {
@@ -67,6 +68,10 @@ struct Record {
   void cheap(double ms) {
     std::lock_guard lock(mutex);
     cheap_ms.push_back(ms);
+  }
+  void flood(double ms) {
+    std::lock_guard lock(mutex);
+    flood_ms.push_back(ms);
   }
 };
 
@@ -379,11 +384,15 @@ void hostile_client(int port, const fs::path& data, Clock::time_point start, Clo
           // do not (they queue, up to the per-session cap: 503 beyond).
           json body{{"width", 32 + k}, {"height", 32}};
           if (k % 2) body["scene"] = client_scene(0);
+          const auto sent = Clock::now();
           const auto f = b.Post((base + "/frame").c_str(), body.dump(), "application/json");
           const int st = f ? f->status : -1;
           record.count("flood-frames", st);
+          record.flood(ms_since(sent));
           if (st != 200 && st != 409 && st != 503) {
-            record.fail(fmt::format("frame flood: status {} ({})", st, f ? "" : httplib::to_string(f.error())));
+            record.fail(fmt::format("frame flood: burst {} request {}: status {} ({}) after {:.0f} ms at {:.1f} s",
+                                    i / 250, k, st, f ? "" : httplib::to_string(f.error()), ms_since(sent),
+                                    std::chrono::duration<double>(sent - start).count()));
           }
         });
       }
@@ -482,6 +491,8 @@ int main(int argc, char** argv) {
               {"cheap_requests", record.cheap_ms.size()},
               {"cheap_p50_ms", percentile(record.cheap_ms, 0.50)},
               {"cheap_p99_ms", percentile(record.cheap_ms, 0.99)},
+              {"flood_frame_p50_ms", percentile(record.flood_ms, 0.50)},
+              {"flood_frame_max_ms", percentile(record.flood_ms, 1.0)},
               {"rss_start_mib", double(rss_start) / 1048576.0},
               {"rss_peak_mib", double(rss_peak.load()) / 1048576.0},
               {"rss_hwm_mib", double(hwm) / 1048576.0},
