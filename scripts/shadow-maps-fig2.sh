@@ -21,7 +21,8 @@
 # Usage: scripts/shadow-maps-fig2.sh
 #   PENUMBRA=build/penumbra SIZE=192x192 OUT=/tmp/shadow-maps-fig2
 #   SCENES="head-point shell-point" RESOLUTIONS="512 1024 2048" NODES="2 3 4 8" OFFSETS="7 13 21"
-#   COLOR_MODEL=chromatic (or paper: the paper's transport colour)
+#   COLOR_MODEL=chromatic (or paper: the paper's transport colour; grey: colored=false, the
+#   transmittance shadow-rays marches, for the fairest comparison with it)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 bin=${PENUMBRA:-$root/build/penumbra}
@@ -33,10 +34,14 @@ node_counts=${NODES-2 3 4 8}
 offset_counts=${OFFSETS-7 13 21}
 color_model=${COLOR_MODEL:-chromatic}
 ref_resolution=${REF_RESOLUTION:-2048}
+if [ "$color_model" = grey ]; then color=colored=false; else color=color_model=$color_model; fi
 mkdir -p "$out"
 
-# field NAME of the first technique in report.json FILE
-field() { sed -n "s/.*\"techniques\": \[{.*\"$2\": \([0-9.eE+-]*\|null\).*/\1/p" "$1"; }
+# "mean_de p99_de aux_bytes" of the technique in report.json FILE
+fields() {
+  python3 -c 'import json, sys; t = json.load(open(sys.argv[1]))["techniques"][0]
+print(t["mean_de"], t["p99_de"], t["aux_bytes"])' "$1"
+}
 
 # compare SCENE REFNAME TECHNIQUE PARAM... -> "mean_de p99_de aux_bytes"
 compare() {
@@ -45,8 +50,8 @@ compare() {
   local dir
   dir=$out/$scene/$ref/$technique-$(echo "$@" | tr ' =' '_-')
   "$bin" compare "$root/scenes/$scene.json" --techniques "$technique" --size "$size" --frames 1 \
-    --reference-image "$out/$scene/$ref.exr" $(for p in "$@"; do echo --param "$p"; done) -o "$dir" >/dev/null
-  echo "$(field "$dir/report.json" mean_de) $(field "$dir/report.json" p99_de) $(field "$dir/report.json" aux_bytes)"
+    --reference-image "$out/$scene/$ref.exr" $(for p in "$@"; do echo --param "$p"; done) -o "$dir" >/dev/null 2>&1
+  fields "$dir/report.json"
 }
 
 echo "# $(date -u +%Y-%m-%dT%H:%MZ), $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)," \
@@ -57,9 +62,9 @@ for scene in $scenes; do
   mkdir -p "$out/$scene"
   "$bin" render "$root/scenes/$scene.json" --technique deep-shadow-map --size "$size" \
     --param nodes=16 --param tolerance=0.002 --param filter=bilinear --param resolution="$ref_resolution" \
-    --param color_model="$color_model" -o "$out/$scene/converged-dsm.exr" 2>/dev/null
+    --param "$color" -o "$out/$scene/converged-dsm.exr" >/dev/null 2>&1
   "$bin" render "$root/scenes/$scene.json" --technique shadow-rays --size "$size" \
-    -o "$out/$scene/shadow-rays.exr" 2>/dev/null
+    -o "$out/$scene/shadow-rays.exr" >/dev/null 2>&1
   row() {  # LABEL TECHNIQUE PARAM...
     local label=$1 technique=$2
     shift 2
@@ -71,13 +76,12 @@ for scene in $scenes; do
   }
   for resolution in $resolutions; do
     for nodes in $node_counts; do
-      row "deep-shadow-map $nodes nodes | $resolution²" deep-shadow-map resolution="$resolution" nodes="$nodes" \
-        color_model="$color_model"
+      row "deep-shadow-map $nodes nodes | $resolution²" deep-shadow-map resolution="$resolution" nodes="$nodes" "$color"
     done
     for offsets in $offset_counts; do
       for filter in paper depth-aware; do
         row "cssm $offsets offsets, $filter | $resolution²" cssm resolution="$resolution" offsets="$offsets" \
-          filter="$filter" color_model="$color_model"
+          filter="$filter" "$color"
       done
     done
   done
