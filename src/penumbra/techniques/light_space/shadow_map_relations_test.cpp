@@ -337,6 +337,26 @@ TEST(ShadowMapRelations, SlopeScaledBiasRemovesAcneOnAGrazingCutFace) {
   }
 }
 
+// The CSSM's offsets are in texels of its map, so a finer map blurs less:
+// the soft band the paper's filter puts along the hard shadow edge of an
+// opaque half-plane (pixels more than 0.05 off shadow-rays) narrows with the
+// resolution (offsets scaled 4x to make the band a few pixels wide at
+// 256^2). With the offsets in texels of a 1024^2 map, as before issue 16,
+// the band kept its width: the offsets grew with the map.
+TEST(ShadowMapRelations, CssmImprovesWithResolution) {
+  const Scene scene = floor_scene("edge", testing::step_tf(0.5f, vec3(0.0f), 1.0f), slanted_directional());
+  const Image reference = render_with(scene, "shadow-rays");
+  double previous = kInfinity;
+  for (double resolution : {256.0, 1024.0}) {
+    const double band = fraction_differing(
+        render_with(scene, "cssm", {{"resolution", resolution}, {"filter", std::string("paper")}, {"offset_scale", 4.0}}),
+        reference, 0.05f);
+    std::printf("[shadow maps] cssm edge at %.0f^2, offsets x4: %.4f of pixels off shadow-rays\n", resolution, band);
+    EXPECT_LT(band, 0.5 * previous) << resolution;
+    previous = band;
+  }
+}
+
 // The shadow TF replaces the TF for the maps only: a transparent shadow TF
 // gives exactly the unshadowed image.
 TEST(ShadowMapRelations, SeparateShadowTransferFunctionDrivesTheMaps) {
