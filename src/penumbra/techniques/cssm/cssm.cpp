@@ -43,7 +43,7 @@ TechniqueInfo cssm_info() {
       "colored stochastic shadow map: per-channel stochastic depths, averaged over m offsets (Weidner & Linsen)",
       ParameterTable{with_shadow_color_parameters({
           light_map_resolution_parameter(),
-          ParameterSpec::choice("offsets", "13", {"7", "13", "21"}, "depth tests averaged per lookup (Fig. 2)"),
+          ParameterSpec::choice("offsets", "13", {"7", "13", "21", "37"}, "depth tests averaged per lookup (Fig. 2)"),
           ParameterSpec::real("offset_scale", 1.0, 0.0, 8.0, "multiplies the offsets (in texels of the map)"),
           ParameterSpec::choice("filter", "depth-aware", {"depth-aware", "paper"},
                                 "depth-aware: taps read at the sample's depth below the occluder's entry plane, "

@@ -12,7 +12,7 @@
 //
 // Parameters
 //   resolution    map texels per side (half per cube face), 256..4096
-//   offsets       7, 13 (the paper's default) or 21 lookups (cssm_offsets.h)
+//   offsets       7, 13 (the paper's default), 21 or 37 lookups (cssm_offsets.h)
 //   offset_scale  multiplies the offsets, which are in texels of the map (a
 //                 finer map blurs less: resolution is a quality control)
 //   filter        depth-aware (default): each tap read at the sample's depth

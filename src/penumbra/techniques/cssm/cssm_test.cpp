@@ -206,21 +206,25 @@ TEST(Cssm, OffsetsFollowThePaperInTexelsOfTheMap) {
   LightMapView map;
   for (int resolution : {256, 1024, 4096}) {
     map.projection.resolution = resolution;
-    for (int count : {7, 13, 21}) {
+    for (int count : {7, 13, 21, 37}) {
       const CssmVisibility v = make_cssm_visibility(&map, count, 1.0f);
       EXPECT_EQ(v.offset_count, count);
       EXPECT_EQ(v.offset(map, 0), vec2(0.0f));
       vec2 sum(0.0f);
       for (int j = 0; j < count; ++j) sum += v.offset(map, j);
       if (count != 7) {
-        EXPECT_EQ(sum, vec2(0.0f)) << "the 13 and 21 sets are symmetric";
+        EXPECT_EQ(sum, vec2(0.0f)) << "the 13, 21 and 37 sets are symmetric";
       }
     }
-    const CssmVisibility paper = make_cssm_visibility(&map, 13, 1.0f);
+    const CssmVisibility paper = make_cssm_visibility(&map, kMaxCssmOffsets, 1.0f);
     const vec2 expected[13] = {{0, 0}, {3, 3}, {-3, 3}, {3, -3}, {-3, -3}, {4, 0}, {-4, 0},
                                {0, 4}, {0, -4}, {7, 0}, {-7, 0}, {0, 7}, {0, -7}};
     for (int j = 0; j < 13; ++j) EXPECT_EQ(paper.offset(map, j), expected[j]) << resolution;
     EXPECT_EQ(make_cssm_visibility(&map, 13, 0.5f).offset(map, 9), vec2(3.5f, 0.0f));
+    // No two offsets of the largest set fall on one texel.
+    for (int a = 0; a < kMaxCssmOffsets; ++a) {
+      for (int b = a + 1; b < kMaxCssmOffsets; ++b) EXPECT_NE(paper.offsets[a], paper.offsets[b]) << a << " " << b;
+    }
   }
 }
 
