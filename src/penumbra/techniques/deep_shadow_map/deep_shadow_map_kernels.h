@@ -121,13 +121,8 @@ struct DeepShadowVisibility {
     LightMapPointL<L> q;
     const auto seen = map.projection.locate<L>(p, q);
     if (none(seen)) return V(1.0f);
-    F gx(0.0f), gy(0.0f);
-    if (slope_bias > 0.0f) {
-      map.plane_gradient<L>(q.face, q.x, q.y, 0, kDeepShadowMaxSlope * map.projection.texel_footprint(q.depth), gx,
-                            gy);
-      gx *= slope_bias;
-      gy *= slope_bias;
-    }
+    F gx, gy;
+    map.receiver_plane<L>(q, 0, kDeepShadowMaxSlope, slope_bias, gx, gy);
     if (!bilinear) {
       return select(seen, plane_value<L>(map, q, to_int(floor(q.x)), to_int(floor(q.y)), gx, gy), V(1.0f));
     }

@@ -96,6 +96,21 @@ struct LightMapView {
     depth_gradient<L>(face, x, y, index, centre, cap, gx, gy);
   }
 
+  // plane_gradient at point q, clamped to max_slope texel footprints per
+  // texel at q's depth and times `scale` (the slope bias of a technique;
+  // 0: no reads, a zero gradient).
+  template <class L>
+  PENUMBRA_HD PENUMBRA_FORCE_INLINE void receiver_plane(const LightMapPointL<L>& q, int index, float max_slope,
+                                                        float scale, typename L::Float& gx,
+                                                        typename L::Float& gy) const {
+    gx = typename L::Float(0.0f);
+    gy = typename L::Float(0.0f);
+    if (scale <= 0.0f) return;
+    plane_gradient<L>(q.face, q.x, q.y, index, max_slope * projection.texel_footprint(q.depth), gx, gy);
+    gx *= scale;
+    gy *= scale;
+  }
+
   // Depths as stored are +inf where a ray meets nothing; finite_depth maps
   // them to kFarDepth so that differences stay finite.
   static constexpr float kFarDepth = 1e30f;

@@ -30,6 +30,18 @@ Image render_with(const Scene& scene, const std::string& technique, ParameterSet
 
 const char* const kShadowMaps[] = {"shadow-map", "deep-shadow-map", "cssm"};
 
+// An orthographic camera looking straight down at `target`, `height` world
+// units of it in view.
+Camera top_down_camera(vec3 target, float height) {
+  Camera camera;
+  camera.eye = vec3(target.x, target.y, 200.0f);
+  camera.target = target;
+  camera.up = vec3(0.0f, 1.0f, 0.0f);
+  camera.projection = Projection::Orthographic;
+  camera.ortho_height = height;
+  return camera;
+}
+
 // A scene seen straight from above with an orthographic camera, a floor
 // below the volume and no ambient light, so a floor pixel is
 // cos(light) * V(floor point) * plane colour.
@@ -41,13 +53,7 @@ Scene floor_scene(const std::string& builtin, const TransferFunction& tf, const 
   m.ambient = 0.0f;
   scene.set_material(m);
   scene.set_planes({Plane{vec3(0.0f, 0.0f, -36.0f), vec3(0.0f, 0.0f, 1.0f), vec3(1.0f)}});
-  Camera camera;
-  camera.eye = vec3(16.0f, 0.0f, 200.0f);
-  camera.target = vec3(16.0f, 0.0f, 0.0f);
-  camera.up = vec3(0.0f, 1.0f, 0.0f);
-  camera.projection = Projection::Orthographic;
-  camera.ortho_height = 110.0f;
-  scene.set_camera(camera);
+  scene.set_camera(top_down_camera(vec3(16.0f, 0.0f, 0.0f), 110.0f));
   return scene;
 }
 
@@ -209,7 +215,7 @@ TEST(ShadowMapRelations, HeadCtFloorShadowDarkensAsUnderShadowRays) {
                                "ct_head_cranium_256x256x108_int16.nhdr")) {
     GTEST_SKIP() << "no head CT in " << PENUMBRA_SHARED_DATA_DIR;
   }
-  const int size = 48;
+  const int size = 32;
   Scene scene = testing::repository_scene("scenes/head-directional.json", size);
   Camera camera = scene.camera();  // from above and behind, so that the floor shadow is in view
   camera.eye = vec3(0.0f, -250.0f, 500.0f);
@@ -261,13 +267,7 @@ Scene grazing_face_scene() {
   Material m;
   m.ambient = 0.0f;
   scene.set_material(m);
-  Camera camera;
-  camera.eye = vec3(0.0f, 0.0f, 200.0f);
-  camera.target = vec3(0.0f, 0.0f, 6.0f);
-  camera.up = vec3(0.0f, 1.0f, 0.0f);
-  camera.projection = Projection::Orthographic;
-  camera.ortho_height = 20.0f;
-  scene.set_camera(camera);
+  scene.set_camera(top_down_camera(vec3(0.0f, 0.0f, 6.0f), 20.0f));
   return scene;
 }
 

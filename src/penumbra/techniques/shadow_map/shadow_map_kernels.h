@@ -84,13 +84,8 @@ struct ShadowMapVisibility {
     if (none(seen)) return typename L::Vec3(1.0f);
     const I x = to_int(floor(q.x));
     const I y = to_int(floor(q.y));
-    F gx(0.0f), gy(0.0f);
-    if (slope_bias > 0.0f) {
-      map.plane_gradient<L>(q.face, q.x, q.y, 0, kShadowMapMaxSlope * map.projection.texel_footprint(q.depth), gx,
-                            gy);
-      gx *= slope_bias;
-      gy *= slope_bias;
-    }
+    F gx, gy;
+    map.receiver_plane<L>(q, 0, kShadowMapMaxSlope, slope_bias, gx, gy);
     F lit(0.0f);
     for (int dy = -pcf_radius; dy <= pcf_radius; ++dy) {
       for (int dx = -pcf_radius; dx <= pcf_radius; ++dx) {
