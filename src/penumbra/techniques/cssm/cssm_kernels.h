@@ -2,11 +2,12 @@
 // cssm kernels (Weidner & Linsen 2018, Tables 1 and 2).
 //
 // Generation (Table 1): a photon per texel and channel walks the light ray's
-// segments; in segment i it is stopped with probability
-// rho_i,lambda = alpha_i (1 - t_i,lambda) (light_ray.h), decided against one
-// random threshold r_i per segment shared by the three channels; the texel
-// keeps the first stopping depth per channel (+inf: never stopped) and the
-// walk ends once all three are set.
+// segments; in segment i it is stopped with probability rho_i,lambda (the
+// paper's alpha_i (1 - t_i,lambda), or penumbra's chromatic or grey model:
+// light_ray.h), decided against one random threshold r_i per segment shared
+// by the three channels; the texel keeps the first stopping depth per
+// channel (+inf: never stopped) and the walk ends once all three are set
+// and the entry depth (below) is found.
 // penumbra stores, as that depth, a uniformly random point of the stopping
 // segment (one more random number, shared by the channels stopping there)
 // rather than a fixed point of it: then P(depth > z) is exactly the
@@ -14,8 +15,9 @@
 // staircase with a step per segment.
 //
 // penumbra also stores a fourth value per texel, the ray's entry into the
-// occluder: the depth where its (least) transmittance falls to
-// 1 - kCssmEntryOpacity (deterministic, not a photon's depth).
+// occluder: the depth where its least channel's transmittance falls to
+// 1 - kCssmEntryOpacity, interpolated inside the segment (deterministic,
+// not a photon's depth).
 //
 // Query (Table 2): the average over m offsets Delta_j (in texels of the
 // map) of the per-channel tests "stored depth > lookup depth". Each test is
