@@ -223,6 +223,9 @@ TEST(ShadowMapRelations, HeadCtFloorShadowDarkensAsUnderShadowRays) {
   camera.up = vec3(0.0f, 1.0f, 0.0f);
   camera.fov_deg = 40.0f;
   scene.set_camera(camera);
+  RenderSettings render = scene.render();
+  render.ert_threshold = 0.99f;  // the scene turns early termination off; the test does not need that
+  scene.set_render(render);
   const CameraView view = scene.camera().view();
   const Box3 box = scene.volume().world_box();
   const Plane floor = scene.planes().at(0);
