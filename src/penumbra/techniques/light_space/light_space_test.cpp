@@ -151,7 +151,7 @@ TEST(LightRay, SlabSegmentsComposeTheChordTransmittance) {
     const Ray ray = p.texel_ray(0, vec2(40.0f + 170.0f * rng.next_float(), 40.0f + 170.0f * rng.next_float()));
     const Interval chord = intersect_box(ray, v.box, 0.0f, kInfinity);
     float covered = 0.0f;
-    vec3 grey(1.0f), colored(1.0f), chromatic(1.0f);
+    vec3 grey(1.0f), colored(1.0f), chromatic(1.0f), unsaturated(1.0f), saturated(1.0f);
     float previous_end = chord.t0;
     with_sampler(v.volume, [&](const auto& sampler) {
       march_light_ray(v, sampler, ray, kInfinity, [&](const LightSegment& s) {
@@ -161,6 +161,8 @@ TEST(LightRay, SlabSegmentsComposeTheChordTransmittance) {
         grey *= 1.0f - stop_probability(s, ShadowColorModel{ShadowColor::Grey});
         colored *= 1.0f - stop_probability(s, ShadowColorModel{ShadowColor::Paper});
         chromatic *= 1.0f - stop_probability(s, ShadowColorModel{ShadowColor::Chromatic, 1.0f});
+        unsaturated *= 1.0f - stop_probability(s, ShadowColorModel{ShadowColor::Chromatic, 0.0f});
+        saturated *= 1.0f - stop_probability(s, ShadowColorModel{ShadowColor::Chromatic, kMaxShadowSaturation});
         return true;
       });
       return 0;
@@ -178,6 +180,10 @@ TEST(LightRay, SlabSegmentsComposeTheChordTransmittance) {
     const vec3 k(4.0f / 3.0f, 13.0f / 12.0f, 7.0f / 12.0f);
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(chromatic[c], std::exp(-k[c] * sigma * chord.length()), 1e-4f);
     EXPECT_NEAR(chromatic.r * chromatic.g * chromatic.b, grey.r * grey.g * grey.b, 1e-4f);
+    // Saturation 0 is grey; the largest keeps every k >= 0 (blue: 1 - 1.5 * 5/12 = 3/8) and the product.
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(unsaturated[c], grey[c], 1e-5f);
+    EXPECT_NEAR(saturated.b, std::exp(-0.375f * sigma * chord.length()), 1e-4f);
+    EXPECT_NEAR(saturated.r * saturated.g * saturated.b, grey.r * grey.g * grey.b, 1e-4f);
   }
 }
 
