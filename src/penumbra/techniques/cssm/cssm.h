@@ -26,8 +26,8 @@
 //   prepare: one map per light, rebuilt only when the data, TF (or shadow
 //            TF), lights, clip planes, step, resolution, seed or colour
 //            model change
-//   render:  one ray-casting pass; per lit sample 5 + 4 m texel reads
-//            (m with the paper's filter)
+//   render:  one ray-casting pass; per lit sample 5 + 4 m texel values read
+//            (3 m with the paper's filter)
 #include "penumbra/render/technique.h"
 
 namespace penumbra {
