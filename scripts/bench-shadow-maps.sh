@@ -10,7 +10,7 @@
 #                  and which is not part of a map)
 #   frame ms       the render() that follows, at SIZE (maps reused)
 #   memory         aux_bytes: the maps (1 float per texel, 12 for 3 deep
-#                  shadow nodes, 3 for a CSSM)
+#                  shadow nodes, 4 for a CSSM: 3 depths and the entry)
 #
 # Each cell is the median over RUNS runs. `penumbra bench` is not used: it
 # rebuilds the maps 7 times per run (first prepare, 3 TF changes, 3 light
@@ -20,7 +20,7 @@
 # Then, unless NO_COMPARE is set, `penumbra compare` of the three against
 # shadow-rays at 256^2 on both scenes and on scenes/shell-point.json (a blue
 # translucent shell around an opaque orange core: coloured shadows), with
-# transport colour (the paper's model, the default) and without
+# colour (the chromatic model, the default since issue 16) and without
 # (colored=false: the grey transmittance of the physical model, which
 # shadow-rays computes): report.md, grid.png and dE images under OUT. compare times --frames frames of prepare() + render()
 # and the first one builds the maps, so 3 frames make its median a frame
@@ -63,7 +63,7 @@ for scene in $scenes; do
   for resolution in $resolutions; do
     for technique in shadow-map deep-shadow-map cssm; do
       times=$(for _ in $(seq "$runs"); do render_times "$scene" $technique --param resolution=$resolution; done)
-      case $technique in shadow-map) floats=1 ;; deep-shadow-map) floats=12 ;; cssm) floats=3 ;; esac
+      case $technique in shadow-map) floats=1 ;; deep-shadow-map) floats=12 ;; cssm) floats=4 ;; esac
       awk -v s="$scene" -v t="$technique" -v r="$resolution" -v p="$(echo "$times" | median 1)" -v b="$base_prepare" \
         -v f="$(echo "$times" | median 2)" -v n="$floats" \
         'BEGIN {printf "| %s | %s | %d^2 | %.0f | %.0f | %.1f |\n", s, t, r, p - b, f, r * r * n * 4 / 2^20}'
@@ -78,7 +78,7 @@ if [ -z "${NO_COMPARE:-}" ]; then
     dir=$out/$scene
     "$bin" compare "$root/scenes/$scene.json" --techniques shadow-map,deep-shadow-map,cssm --reference shadow-rays \
       --size 256x256 --frames 3 -o "$dir-colored" >/dev/null
-    # The same shadow-rays reference, without transport colour.
+    # The same shadow-rays reference, without colour.
     "$bin" compare "$root/scenes/$scene.json" --techniques deep-shadow-map,cssm --param colored=false \
       --reference-image "$dir-colored/reference.exr" --size 256x256 --frames 3 -o "$dir-grey" >/dev/null
     for variant in colored grey; do

@@ -15,20 +15,24 @@ class Cssm final : public LightMapTechnique {
     offset_scale_ = float(params.number("offset_scale"));
     const int resolution = params.integer("resolution");
     const auto seed = std::uint32_t(params.integer("seed"));
-    const bool colored = params.flag("colored");
-    update_maps(scene, resolution, {double(resolution), double(seed), double(colored)},
+    depth_aware_ = params.choice("filter") == "depth-aware";
+    const ShadowColorModel colors = shadow_color_model(params);
+    std::vector<double> key = {double(resolution), double(seed)};
+    for (double k : shadow_color_key(colors)) key.push_back(k);
+    update_maps(scene, resolution, std::move(key),
                 [&](const RenderView& view, int light, const LightProjection& projection) {
-                  return build_cssm(view, projection, seed, light, colored);
+                  return build_cssm(view, projection, seed, light, colors);
                 });
   }
 
   void render(const Scene& scene, Image& image, RenderStats* stats) override {
-    render_lit(scene, make_cssm_visibility(views(), offset_count_, offset_scale_), image, stats);
+    render_lit(scene, make_cssm_visibility(views(), offset_count_, offset_scale_, depth_aware_), image, stats);
   }
 
  private:
   int offset_count_ = 13;
   float offset_scale_ = 1.0f;
+  bool depth_aware_ = true;
 };
 
 }  // namespace
@@ -37,15 +41,15 @@ TechniqueInfo cssm_info() {
   return TechniqueInfo{
       "cssm",
       "colored stochastic shadow map: per-channel stochastic depths, averaged over m offsets (Weidner & Linsen)",
-      ParameterTable{{
+      ParameterTable{with_shadow_color_parameters({
           light_map_resolution_parameter(),
-          ParameterSpec::choice("offsets", "13", {"7", "13", "21"}, "depth tests averaged per lookup (Fig. 2)"),
-          ParameterSpec::real("offset_scale", 1.0, 0.0, 8.0,
-                              "multiplies the offsets (texels of a 1024^2 map, scaled with resolution)"),
+          ParameterSpec::choice("offsets", "13", {"7", "13", "21", "37"}, "depth tests averaged per lookup (Fig. 2)"),
+          ParameterSpec::real("offset_scale", 1.0, 0.0, 8.0, "multiplies the offsets (in texels of the map)"),
+          ParameterSpec::choice("filter", "depth-aware", {"depth-aware", "paper"},
+                                "depth-aware: taps read at the sample's depth below the occluder's entry plane, "
+                                "taps off that plane dropped; paper: every tap at the sample's depth"),
           ParameterSpec::integer("seed", 0, 0, 1 << 30, "random seed of the map generation"),
-          ParameterSpec::flag("colored", true,
-                              "stop photons with alpha (1 - t), t the TF colour; false: alpha (grey shadows)"),
-      }},
+      })},
       [] { return std::make_unique<Cssm>(); }};
 }
 

@@ -3,8 +3,8 @@
 // (Hadwiger et al. 2006), the technique Weidner & Linsen (2018) compare CSSM
 // against, with three nodes per texel in their comparison. Per texel, the
 // transmittance of the light ray as a function of depth, per colour channel
-// (light_ray.h: with `colored`, a segment of opacity alpha and TF colour t
-// transmits 1 - alpha (1 - t), the CSSM paper's model; without, 1 - alpha),
+// (the colour model of light_ray.h: chromatic by default, the CSSM paper's
+// 1 - alpha (1 - t), or grey 1 - alpha),
 // compressed to N nodes (depth, r, g, b) by an error-bounded greedy
 // (deep_shadow_compression.h); a lookup interpolates between the nodes.
 //
@@ -15,13 +15,16 @@
 //               1.64x, up to 32x) until the function fits in `nodes`; the
 //               value behind the last node (what receivers behind the
 //               volume read) is kept exact
-//   colored     transport colour: shadows take the TF colour of what they
-//               pass through (false: grey, the shadow-rays transmittance)
 //   filter      nearest texel, or bilinear over the four nearest texels
+//   slope_bias  lookups move toward the light by this many times the
+//               occluder's depth change over the texels read (against
+//               moire on grazing surfaces; deep_shadow_map_kernels.h)
+//   colored, color_model, saturation
+//               the colour model (light_ray.h, light_map_technique.h)
 // Passes
 //   prepare: one map per light, rebuilt only when the data, TF (or shadow
 //            TF), lights, clip planes, step, resolution, nodes, tolerance or
-//            colored change
+//            colour model change
 //   render:  one ray-casting pass; per lit sample one (or four) node
 //            evaluations
 #include "penumbra/render/technique.h"

@@ -17,15 +17,15 @@ inline constexpr float kDeepShadowFloor = 1e-4f;
 // `node_count` nodes written to `texel` (node_count * 4 floats; unused nodes
 // at depth +inf) and returns the tolerance the stored nodes meet.
 template <class Sampler>
-PENUMBRA_HD float deep_shadow_texel(const RenderView& v, const Sampler& sampler, const Ray& ray, bool colored,
-                                    float tolerance, int node_count, float* texel) {
+PENUMBRA_HD float deep_shadow_texel(const RenderView& v, const Sampler& sampler, const Ray& ray,
+                                    const ShadowColorModel& colors, float tolerance, int node_count, float* texel) {
   DeepShadowCompressor compressor(tolerance, node_count);
   vec3 transmittance(1.0f);
   float end = -kInfinity;
   march_light_ray(v, sampler, ray, kInfinity, [&](const LightSegment& s) {
     // A gap of skipped empty space is flat: its start is a breakpoint too.
     if (s.start > end + 1e-3f * s.length) compressor.add(s.start, transmittance);
-    transmittance *= 1.0f - stop_probability(s, colored);
+    transmittance *= 1.0f - stop_probability(s, colors);
     end = s.start + s.length;
     compressor.add(end, transmittance);
     return max_component(transmittance) > kDeepShadowFloor;
@@ -49,23 +49,39 @@ PENUMBRA_HD float deep_shadow_texel(const RenderView& v, const Sampler& sampler,
 
 // One deep shadow map for the light of projection `p` (host).
 inline LightMap build_deep_shadow_map(const RenderView& v, const LightProjection& p, int node_count, float tolerance,
-                                      bool colored) {
+                                      const ShadowColorModel& colors) {
   LightMap map("deep shadow map", p, 4 * node_count);
   with_sampler(v.volume, [&](const auto& sampler) {
     map.fill([&](const Ray& ray, std::int64_t, float* texel) {
-      deep_shadow_texel(v, sampler, ray, colored, tolerance, node_count, texel);
+      deep_shadow_texel(v, sampler, ray, colors, tolerance, node_count, texel);
     });
     return 0;
   });
   return map;
 }
 
+// Largest depth change per texel, in texel footprints, that the
+// slope-scaled bias follows (a surface about 83 degrees from facing the
+// light); steeper changes are depth discontinuities.
+inline constexpr float kDeepShadowMaxSlope = 8.0f;
+
 // Visibility toward light `light`: the nodes of the nearest texel, or a
-// bilinear blend of the four nearest texels' functions at the same depth.
+// bilinear blend of the four nearest texels' functions.
+// Slope-scaled bias: on a surface inclined to the light a texel's ray
+// enters it up to half a texel's depth change (a texel for bilinear)
+// before or after the sample's own ray, and reading the texel's function at
+// the sample's depth puts the sample that much too deep or too shallow in
+// the material: moire stripes on grazing faces. Each texel is read at the
+// sample's depth moved by slope_bias times the depth change of the
+// occluder's entry (the first node, where the function leaves 1) between
+// the sample and the texel's centre, from the gradient of the entries
+// around the sample (LightMapView::plane_gradient): for slope_bias 1 the
+// same depth below a planar occluder as the sample.
 struct DeepShadowVisibility {
   const LightMapView* maps;
   int node_count;
   bool bilinear;
+  float slope_bias = 1.0f;
 
   // The function of texel (x, y) of `face` at `depth`; lit outside the map.
   template <class L>
@@ -76,6 +92,16 @@ struct DeepShadowVisibility {
     const auto at = map.texel_offset<L>(face, x, y, inside);
     using V = typename L::Vec3;
     return select(inside, evaluate_deep_shadow<L>(map.texels, at, node_count, depth), V(1.0f));
+  }
+
+  // Texel (x, y) for point q, read at q's depth moved along the receiver
+  // plane of gradient (gx, gy).
+  template <class L>
+  PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Vec3 plane_value(const LightMapView& map, const LightMapPointL<L>& q,
+                                                                 typename L::Int x, typename L::Int y,
+                                                                 typename L::Float gx, typename L::Float gy) const {
+    const auto depth = q.depth + gx * (to_float(x) + 0.5f - q.x) + gy * (to_float(y) + 0.5f - q.y);
+    return texel_value<L>(map, q.face, x, y, depth);
   }
 
   PENUMBRA_HD vec3 operator()(int light, vec3 p, const LightSample& ls) const {
@@ -95,17 +121,19 @@ struct DeepShadowVisibility {
     LightMapPointL<L> q;
     const auto seen = map.projection.locate<L>(p, q);
     if (none(seen)) return V(1.0f);
+    F gx, gy;
+    map.receiver_plane<L>(q, 0, kDeepShadowMaxSlope, slope_bias, gx, gy);
     if (!bilinear) {
-      return select(seen, texel_value<L>(map, q.face, to_int(floor(q.x)), to_int(floor(q.y)), q.depth), V(1.0f));
+      return select(seen, plane_value<L>(map, q, to_int(floor(q.x)), to_int(floor(q.y)), gx, gy), V(1.0f));
     }
     const F cx = q.x - 0.5f, cy = q.y - 0.5f;
     const F bx = floor(cx), by = floor(cy);
     const F fx = cx - bx, fy = cy - by;
     const I x = to_int(bx), y = to_int(by);
-    const V v00 = texel_value<L>(map, q.face, x, y, q.depth);
-    const V v10 = texel_value<L>(map, q.face, x + I(1), y, q.depth);
-    const V v01 = texel_value<L>(map, q.face, x, y + I(1), q.depth);
-    const V v11 = texel_value<L>(map, q.face, x + I(1), y + I(1), q.depth);
+    const V v00 = plane_value<L>(map, q, x, y, gx, gy);
+    const V v10 = plane_value<L>(map, q, x + I(1), y, gx, gy);
+    const V v01 = plane_value<L>(map, q, x, y + I(1), gx, gy);
+    const V v11 = plane_value<L>(map, q, x + I(1), y + I(1), gx, gy);
     const V top = v00 * (1.0f - fx) + v10 * fx;
     const V bottom = v01 * (1.0f - fx) + v11 * fx;
     return select(seen, top * (1.0f - fy) + bottom * fy, V(1.0f));

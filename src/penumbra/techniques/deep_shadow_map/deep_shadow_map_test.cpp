@@ -16,6 +16,8 @@
 namespace penumbra {
 namespace {
 
+const ShadowColorModel kColors{};  // the default: chromatic, saturation 1
+
 // Translucent coloured spheres with opaque cores: smooth and sharp changes.
 Scene coloured_spheres() {
   Scene scene = testing::procedural_scene("spheres", ivec3(32));
@@ -52,7 +54,7 @@ TEST(DeepShadowMap, ErrorIsBoundedByTheCompressionTolerance) {
         const Ray ray = p.texel_ray(0, vec2(float(x) + 0.5f, float(y) + 0.5f));
         std::vector<float> texel(4 * nodes);
         const float bound = with_sampler(v.volume, [&](const auto& sampler) {
-          return deep_shadow_texel(v, sampler, ray, true, 0.01f, nodes, texel.data());
+          return deep_shadow_texel(v, sampler, ray, kColors, 0.01f, nodes, texel.data());
         });
         ASSERT_LT(bound, kInfinity) << "the largest level should fit these rays";
         const Interval chord = volume_interval(v, ray, 0.0f, kInfinity);
@@ -61,7 +63,7 @@ TEST(DeepShadowMap, ErrorIsBoundedByTheCompressionTolerance) {
         at_base += bound == 0.01f;
         for (float z = chord.t0 - 1.0f; z < chord.t1 + 1.0f; z += 0.1f) {
           const vec3 error =
-              glm::abs(evaluate_deep_shadow(texel.data(), nodes, z) - reference_transmittance(v, ray, z, true));
+              glm::abs(evaluate_deep_shadow(texel.data(), nodes, z) - reference_transmittance(v, ray, z, kColors));
           worst = std::max(worst, max_component(error) - bound);
           ASSERT_LE(max_component(error), bound + 2e-4f) << "texel " << x << ", " << y << " depth " << z;
         }
@@ -90,16 +92,16 @@ TEST(DeepShadowMap, ConvergesToTheRayMarchedTransmittanceWithMoreNodes) {
     points.push_back(v.box.lower + vec3(rng.next_float(), rng.next_float(), rng.next_float()) * v.box.extent());
   float previous = kInfinity;
   for (int nodes : {2, 3, 6, 16}) {
-    const LightMap map = build_deep_shadow_map(v, p, nodes, 0.002f, true);
+    const LightMap map = build_deep_shadow_map(v, p, nodes, 0.002f, kColors);
     const LightMapView view = map.view();
-    const DeepShadowVisibility visibility{&view, nodes, false};
+    const DeepShadowVisibility visibility{&view, nodes, false, 0.0f};  // no bias: the texel's own function
     double sum = 0.0;
     float worst = 0.0f;
     for (const vec3& q : points) {
       LightMapPoint m;
       ASSERT_TRUE(p.locate(q, m));
       const Ray ray = p.texel_ray(0, glm::floor(m.texel) + 0.5f);
-      const vec3 expected = reference_transmittance(v, ray, m.depth, true);
+      const vec3 expected = reference_transmittance(v, ray, m.depth, kColors);
       const float error = max_component(glm::abs(visibility(0, q, sample_light(light, q)) - expected));
       sum += error;
       worst = std::max(worst, error);
@@ -125,7 +127,8 @@ TEST(DeepShadowMap, GreyLookupsMatchShadowRays) {
   resources.update(scene);
   const RenderView v = resources.view(scene);
   const Light light = slanted_light();
-  const LightMap map = build_deep_shadow_map(v, make_light_projection(light, v.box, 512), 16, 0.002f, false);
+  const LightMap map = build_deep_shadow_map(v, make_light_projection(light, v.box, 512), 16, 0.002f,
+                                             ShadowColorModel{ShadowColor::Grey});
   const LightMapView view = map.view();
   const DeepShadowVisibility visibility{&view, 16, true};
   Pcg32 rng(4);

@@ -53,6 +53,69 @@ struct LightMapView {
     return (X(face) * X(projection.texels_per_face()) + X(y) * X(n) + X(x)) * X(values_per_texel);
   }
 
+  // The change per texel of value `index` (a depth) around texel (x, y) of
+  // `face`, per axis: of the forward and backward differences the smaller in
+  // magnitude (one side of a depth discontinuity is continuous), sign kept;
+  // +inf depths (empty rays) count as `far` and each axis is clamped to
+  // +-cap. For slope-scaled biases and depth-aware filters.
+  template <class L>
+  PENUMBRA_HD PENUMBRA_FORCE_INLINE void depth_gradient(typename L::Int face, typename L::Int x, typename L::Int y,
+                                                        int index, typename L::Float centre, typename L::Float cap,
+                                                        typename L::Float& gx, typename L::Float& gy) const {
+    using F = typename L::Float;
+    using I = typename L::Int;
+    const auto value = [&](I tx, I ty) {
+      typename L::Mask inside;
+      const auto at = texel_offset<L>(face, tx, ty, inside);
+      return select(inside, finite_depth(gather(texels, at + typename L::Index(index))), F(kFarDepth));
+    };
+    const F c = finite_depth(centre);
+    const auto pick = [&](F forward, F backward) {
+      const F g = select(max(forward, -forward) <= max(backward, -backward), forward, backward);
+      return max(-cap, min(g, cap));
+    };
+    gx = pick(value(x + I(1), y) - c, c - value(x - I(1), y));
+    gy = pick(value(x, y + I(1)) - c, c - value(x, y - I(1)));
+  }
+
+  // The receiver plane of value `index` (a depth) at continuous texel
+  // coordinates (qx, qy): the gradient (gx, gy) per texel of the texel
+  // holding the point (depth_gradient, clamped to +-cap). A lookup of texel
+  // (tx, ty) at depth z for that point reads depth
+  //   z + gx (tx + 0.5 - qx) + gy (ty + 0.5 - qy):
+  // the same depth below a planar occluder as the point's own ray.
+  template <class L>
+  PENUMBRA_HD PENUMBRA_FORCE_INLINE void plane_gradient(typename L::Int face, typename L::Float qx,
+                                                        typename L::Float qy, int index, typename L::Float cap,
+                                                        typename L::Float& gx, typename L::Float& gy) const {
+    using F = typename L::Float;
+    const typename L::Int x = to_int(floor(qx)), y = to_int(floor(qy));
+    typename L::Mask inside;
+    const auto at = texel_offset<L>(face, x, y, inside);
+    const F centre = select(inside, gather(texels, at + typename L::Index(index)), F(kFarDepth));
+    depth_gradient<L>(face, x, y, index, centre, cap, gx, gy);
+  }
+
+  // plane_gradient at point q, clamped to max_slope texel footprints per
+  // texel at q's depth and times `scale` (the slope bias of a technique;
+  // 0: no reads, a zero gradient).
+  template <class L>
+  PENUMBRA_HD PENUMBRA_FORCE_INLINE void receiver_plane(const LightMapPointL<L>& q, int index, float max_slope,
+                                                        float scale, typename L::Float& gx,
+                                                        typename L::Float& gy) const {
+    gx = typename L::Float(0.0f);
+    gy = typename L::Float(0.0f);
+    if (scale <= 0.0f) return;
+    plane_gradient<L>(q.face, q.x, q.y, index, max_slope * projection.texel_footprint(q.depth), gx, gy);
+    gx *= scale;
+    gy *= scale;
+  }
+
+  // Depths as stored are +inf where a ray meets nothing; finite_depth maps
+  // them to kFarDepth so that differences stay finite.
+  static constexpr float kFarDepth = 1e30f;
+  template <class F> PENUMBRA_HD static F finite_depth(F depth) { return min(depth, F(kFarDepth)); }
+
   // Whether packet offsets (32-bit) reach every value of the map.
   PENUMBRA_HD bool fits_packets() const {
     return projection.texel_count() * values_per_texel < (std::int64_t(1) << 31);

@@ -8,6 +8,7 @@
 #include "penumbra/render/scene_resources.h"
 #include "penumbra/render/technique.h"
 #include "penumbra/techniques/light_space/light_map_set.h"
+#include "penumbra/techniques/light_space/light_ray.h"
 
 #include <cstdint>
 #include <utility>
@@ -54,6 +55,45 @@ class LightMapTechnique : public Technique {
 inline ParameterSpec light_map_resolution_parameter() {
   return ParameterSpec::integer("resolution", 1024, 256, 4096,
                                 "map texels per side (half per cube face for a point light in or near the volume)");
+}
+
+// The colour parameters of the coloured maps (deep-shadow-map, cssm), see
+// light_ray.h: `colored` (false: grey), `color_model` (chromatic, the
+// default, or the paper's alpha (1 - t)) and `saturation` (chromatic).
+inline std::vector<ParameterSpec> shadow_color_parameters() {
+  return {
+      ParameterSpec::flag("colored", true, "shadows take the hue of what they pass through (false: grey, as shadow-rays)"),
+      ParameterSpec::choice("color_model", "chromatic", {"chromatic", "paper"},
+                            "chromatic: the TF hue redistributes the extinction over r, g, b (an opaque white object "
+                            "shadows as under shadow-rays); paper: Weidner & Linsen's 1 - alpha (1 - t), bright "
+                            "material transmits"),
+      ParameterSpec::real("saturation", 1.0, 0.0, double(kMaxShadowSaturation),
+                          "chromatic model: how strongly the TF hue tints the shadow (0: grey)"),
+  };
+}
+
+// `specs` followed by shadow_color_parameters().
+inline std::vector<ParameterSpec> with_shadow_color_parameters(std::vector<ParameterSpec> specs) {
+  for (ParameterSpec& s : shadow_color_parameters()) specs.push_back(std::move(s));
+  return specs;
+}
+
+inline ShadowColorModel shadow_color_model(const ParameterValues& params) {
+  ShadowColorModel m;
+  if (!params.flag("colored")) {
+    m.kind = ShadowColor::Grey;
+  } else if (params.choice("color_model") == "paper") {
+    m.kind = ShadowColor::Paper;
+  } else {
+    m.kind = ShadowColor::Chromatic;
+    m.saturation = float(params.number("saturation"));
+  }
+  return m;
+}
+
+// The values of a colour model that shape a map (its rebuild key).
+inline std::vector<double> shadow_color_key(const ShadowColorModel& m) {
+  return {double(int(m.kind)), m.kind == ShadowColor::Chromatic ? double(m.saturation) : 0.0};
 }
 
 }  // namespace penumbra

@@ -69,6 +69,15 @@ struct LightProjection {
     return ((a - window_center) / window_half + 1.0f) * 0.5f * float(resolution);
   }
 
+  // World size of one texel at `depth` along its ray: constant for an
+  // orthographic map, growing with the distance from the light for a
+  // perspective one (the window's obliquity ignored: a scale for biases).
+  template <class F> PENUMBRA_HD F texel_footprint(F depth) const {
+    const float per_texel = 2.0f * window_half / float(resolution);
+    if (kind == LightProjectionKind::Perspective) return depth * per_texel;
+    return F(per_texel);
+  }
+
   // The light ray through texel coordinates t of `face`; its parameter is the
   // depth the map stores.
   PENUMBRA_HD Ray texel_ray(int face, vec2 t) const {

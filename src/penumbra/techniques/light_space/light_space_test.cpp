@@ -151,15 +151,18 @@ TEST(LightRay, SlabSegmentsComposeTheChordTransmittance) {
     const Ray ray = p.texel_ray(0, vec2(40.0f + 170.0f * rng.next_float(), 40.0f + 170.0f * rng.next_float()));
     const Interval chord = intersect_box(ray, v.box, 0.0f, kInfinity);
     float covered = 0.0f;
-    vec3 grey(1.0f), colored(1.0f);
+    vec3 grey(1.0f), colored(1.0f), chromatic(1.0f), unsaturated(1.0f), saturated(1.0f);
     float previous_end = chord.t0;
     with_sampler(v.volume, [&](const auto& sampler) {
       march_light_ray(v, sampler, ray, kInfinity, [&](const LightSegment& s) {
         EXPECT_NEAR(s.start, previous_end, 1e-3f);
         previous_end = s.start + s.length;
         covered += s.length;
-        grey *= 1.0f - stop_probability(s, false);
-        colored *= 1.0f - stop_probability(s, true);
+        grey *= 1.0f - stop_probability(s, ShadowColorModel{ShadowColor::Grey});
+        colored *= 1.0f - stop_probability(s, ShadowColorModel{ShadowColor::Paper});
+        chromatic *= 1.0f - stop_probability(s, ShadowColorModel{ShadowColor::Chromatic, 1.0f});
+        unsaturated *= 1.0f - stop_probability(s, ShadowColorModel{ShadowColor::Chromatic, 0.0f});
+        saturated *= 1.0f - stop_probability(s, ShadowColorModel{ShadowColor::Chromatic, kMaxShadowSaturation});
         return true;
       });
       return 0;
@@ -167,10 +170,20 @@ TEST(LightRay, SlabSegmentsComposeTheChordTransmittance) {
     EXPECT_NEAR(covered, chord.length(), 1e-3f);
     EXPECT_NEAR(grey.r, std::exp(-sigma * chord.length()), 1e-4f);
     EXPECT_EQ(grey.r, grey.b);
-    // Coloured: each segment stops alpha (1 - t); blue (t = 1) passes freely.
+    // Paper colours: each segment stops alpha (1 - t); blue (t = 1) passes freely.
     EXPECT_EQ(colored.b, 1.0f);
     EXPECT_GT(colored.g, grey.g);
     EXPECT_LT(colored.r, colored.g);
+    // Chromatic: c = t / max t = (0.25, 0.5, 1), mean 7/12, extinction
+    // weights k = 1 + (mean - c) = (4/3, 13/12, 7/12): they average 1, so the
+    // product of the channels is the grey transmittance cubed.
+    const vec3 k(4.0f / 3.0f, 13.0f / 12.0f, 7.0f / 12.0f);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(chromatic[c], std::exp(-k[c] * sigma * chord.length()), 1e-4f);
+    EXPECT_NEAR(chromatic.r * chromatic.g * chromatic.b, grey.r * grey.g * grey.b, 1e-4f);
+    // Saturation 0 is grey; the largest keeps every k >= 0 (blue: 1 - 1.5 * 5/12 = 3/8) and the product.
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(unsaturated[c], grey[c], 1e-5f);
+    EXPECT_NEAR(saturated.b, std::exp(-0.375f * sigma * chord.length()), 1e-4f);
+    EXPECT_NEAR(saturated.r * saturated.g * saturated.b, grey.r * grey.g * grey.b, 1e-4f);
   }
 }
 

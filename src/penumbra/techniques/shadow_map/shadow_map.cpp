@@ -10,6 +10,7 @@ class ShadowMap final : public LightMapTechnique {
  public:
   void prepare(const Scene& scene, const ParameterValues& params) override {
     pcf_radius_ = params.integer("pcf_radius");
+    slope_bias_ = float(params.number("slope_bias"));
     bias_ = float(params.number("depth_bias")) * scene.volume_view().min_spacing();
     const int resolution = params.integer("resolution");
     const float threshold = float(params.number("threshold"));
@@ -20,12 +21,13 @@ class ShadowMap final : public LightMapTechnique {
   }
 
   void render(const Scene& scene, Image& image, RenderStats* stats) override {
-    render_lit(scene, ShadowMapVisibility{views(), pcf_radius_, bias_}, image, stats);
+    render_lit(scene, ShadowMapVisibility{views(), pcf_radius_, bias_, slope_bias_}, image, stats);
   }
 
  private:
   int pcf_radius_ = 0;
   float bias_ = 0.0f;
+  float slope_bias_ = 1.0f;
 };
 
 }  // namespace
@@ -42,6 +44,9 @@ TechniqueInfo shadow_map_info() {
                                  "percentage-closer filtering over (2r+1)^2 texels (0 = one binary test)"),
           ParameterSpec::real("depth_bias", 1.0, 0.0, 16.0,
                               "added to the stored depth against self-shadowing, in voxels"),
+          ParameterSpec::real("slope_bias", 1.0, 0.0, 4.0,
+                              "adds this many times the occluder's depth change over the texels a tap stands "
+                              "for (against acne on grazing surfaces; 0: constant bias only)"),
       }},
       [] { return std::make_unique<ShadowMap>(); }};
 }

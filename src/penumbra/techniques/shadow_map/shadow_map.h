@@ -13,6 +13,8 @@
 //   pcf_radius   percentage-closer filtering over (2 r + 1)^2 texels
 //                (0 = one binary test)
 //   depth_bias   added to the stored depth (voxels) against self-shadowing
+//   slope_bias   plus this many times the stored depth's change over the
+//                texels a tap stands for (against acne on grazing surfaces)
 // Passes
 //   prepare: one map per light (light_space/: orthographic for directional
 //            lights, perspective or a cube map for point lights), rebuilt

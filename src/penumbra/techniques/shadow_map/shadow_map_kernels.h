@@ -40,14 +40,30 @@ inline LightMap build_shadow_map(const RenderView& v, const LightProjection& p, 
   return map;
 }
 
+// Largest depth change per texel, in texel footprints, that the
+// slope-scaled bias follows (a surface about 83 degrees from facing the
+// light); steeper changes are depth discontinuities.
+inline constexpr float kShadowMapMaxSlope = 8.0f;
+
 // Visibility toward light `light` with percentage-closer filtering over
 // (2 r + 1)^2 texels around the nearest one (r = 0: the plain binary test):
 // a texel lights the point when the point lies in front of its stored depth
 // plus a bias against self-shadowing; outside the map: lit.
+// The bias is a constant (depth_bias) plus a slope-scaled part: on a
+// surface inclined to the light the stored depth changes from texel to
+// texel, and a tap's texel centre lies up to (r + 1/2) texels (r: its
+// Chebyshev distance) from the sample, whose surface lies that much nearer
+// or farther: acne stripes on grazing surfaces. Each tap compares the
+// sample's depth moved by slope_bias times the stored depth's change from
+// the sample to the tap's centre, from the gradient around the sample
+// (LightMapView::plane_gradient, capped at kShadowMapMaxSlope footprints
+// per texel): for slope_bias 1 the comparison a planar occluder would give
+// at the sample's own ray.
 struct ShadowMapVisibility {
   const LightMapView* maps;
   int pcf_radius;
   float bias;  // world units
+  float slope_bias = 1.0f;
 
   PENUMBRA_HD vec3 operator()(int light, vec3 p, const LightSample& ls) const {
     return lanes<ScalarLanes>(light, p, ls, true);
@@ -68,13 +84,17 @@ struct ShadowMapVisibility {
     if (none(seen)) return typename L::Vec3(1.0f);
     const I x = to_int(floor(q.x));
     const I y = to_int(floor(q.y));
+    F gx, gy;
+    map.receiver_plane<L>(q, 0, kShadowMapMaxSlope, slope_bias, gx, gy);
     F lit(0.0f);
     for (int dy = -pcf_radius; dy <= pcf_radius; ++dy) {
       for (int dx = -pcf_radius; dx <= pcf_radius; ++dx) {
         M inside;
-        const auto at = map.texel_offset<L>(q.face, x + I(dx), y + I(dy), inside);
+        const I tx = x + I(dx), ty = y + I(dy);
+        const auto at = map.texel_offset<L>(q.face, tx, ty, inside);
         const F stored = gather(map.texels, at);
-        lit += select((!inside) | (q.depth < stored + bias), F(1.0f), F(0.0f));
+        const F depth = q.depth + gx * (to_float(tx) + 0.5f - q.x) + gy * (to_float(ty) + 0.5f - q.y);
+        lit += select((!inside) | (depth < stored + bias), F(1.0f), F(0.0f));
       }
     }
     const int side = 2 * pcf_radius + 1;
