@@ -4,6 +4,8 @@
 # session so the ratio is fair on a noisy machine. Also times the engine CT.
 # Needs: make build, and the peer's packages (see ../shared/peers/README.md).
 # Usage: scripts/bench-vs-vtk.sh [RUNS]   (default 3 runs of everything)
+#   PENUMBRA_BASE_BIN=/path/penumbra  also an older build, and this build with --simd off, in each run
+#   QUICK=1                           emission-absorption and phong on the peer scene only
 set -euo pipefail
 cd "$(dirname "$0")/.."
 runs=${1:-3}
@@ -15,8 +17,14 @@ echo "# $(date -u +%Y-%m-%dT%H:%MZ) $(nproc) cores, $(grep -m1 'model name' /pro
 for run in $(seq 1 "$runs"); do
   echo "# run $run"
   /usr/bin/python3 "$peer" --configs cpu0,cpu1 --frames 10 --outdir build/peer | grep -v '^#'
-  "$bin" bench scenes/peer_synthetic.json --technique emission-absorption --technique phong --technique shadow-rays --frames 10
-  if [ -f ../shared/data/engine_256x256x128_uint8.nhdr ]; then
+  peer_techniques=(--technique emission-absorption --technique phong)
+  [ "${QUICK:-0}" = 1 ] || peer_techniques+=(--technique shadow-rays)
+  if [ -n "${PENUMBRA_BASE_BIN:-}" ]; then
+    "$PENUMBRA_BASE_BIN" bench scenes/peer_synthetic.json "${peer_techniques[@]}" --frames 10 | sed 's/^/before /'
+    "$bin" --simd off bench scenes/peer_synthetic.json "${peer_techniques[@]}" --frames 10 | sed 's/^/simd-off /'
+  fi
+  "$bin" bench scenes/peer_synthetic.json "${peer_techniques[@]}" --frames 10
+  if [ "${QUICK:-0}" != 1 ] && [ -f ../shared/data/engine_256x256x128_uint8.nhdr ]; then
     "$bin" bench scenes/engine.json --technique emission-absorption --technique phong --technique shadow-rays --frames 10 --param shadow-rays.shadow_cache=false
   fi
 done
