@@ -24,21 +24,12 @@ struct NormalView {
   // 4-byte texels.
   template <class L> PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Vec3 sample(const typename L::Vec3& p) const {
     using F = typename L::Float;
-    using I = typename L::Int;
     using X = typename L::Index;
     using V = typename L::Vec3;
-    const VoxelGrid& g = grid;
-    const F px = clamp(p.x, F(0.0f), F(g.upper.x));
-    const F py = clamp(p.y, F(0.0f), F(g.upper.y));
-    const F pz = clamp(p.z, F(0.0f), F(g.upper.z));
-    const I ix = min(to_int_nonnegative(px), I(g.max_base.x));
-    const I iy = min(to_int_nonnegative(py), I(g.max_base.y));
-    const I iz = min(to_int_nonnegative(pz), I(g.max_base.z));
-    const F fx = min(px - to_float(ix), F(1.0f));
-    const F fy = min(py - to_float(iy), F(1.0f));
-    const F fz = min(pz - to_float(iz), F(1.0f));
-    const X base = X(ix) + X(g.dims.x) * (X(iy) + X(g.dims.y) * X(iz));
-    const X sx(g.stride_x), sy(g.stride_y), sz(g.stride_z);
+    const GridCell<L> cell(grid, p);
+    const X& base = cell.base;
+    const F &fx = cell.fx, &fy = cell.fy, &fz = cell.fz;
+    const X sx(grid.stride_x), sy(grid.stride_y), sz(grid.stride_z);
     const V c000 = load_texel_xyz(texels, base), c100 = load_texel_xyz(texels, base + sx);
     const V c010 = load_texel_xyz(texels, base + sy), c110 = load_texel_xyz(texels, base + sx + sy);
     const V c001 = load_texel_xyz(texels, base + sz), c101 = load_texel_xyz(texels, base + sx + sz);

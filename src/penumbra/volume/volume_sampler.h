@@ -37,23 +37,39 @@ struct VoxelGrid {
         count(std::int64_t(grid.x) * grid.y * grid.z) {}
 };
 
+// The grid cell of index-space positions, clamped to the grid: the offset of
+// its first voxel and the fractions inside it, for trilinear interpolation of
+// voxels or of NormalVolume's texels.
+template <class L> struct GridCell {
+  typename L::Index base;
+  typename L::Float fx, fy, fz;
+
+  PENUMBRA_HD PENUMBRA_FORCE_INLINE GridCell(const VoxelGrid& g, const typename L::Vec3& p) {
+    using F = typename L::Float;
+    using I = typename L::Int;
+    using X = typename L::Index;
+    const F px = clamp(p.x, F(0.0f), F(g.upper.x));
+    const F py = clamp(p.y, F(0.0f), F(g.upper.y));
+    const F pz = clamp(p.z, F(0.0f), F(g.upper.z));
+    const I ix = min(to_int_nonnegative(px), I(g.max_base.x));
+    const I iy = min(to_int_nonnegative(py), I(g.max_base.y));
+    const I iz = min(to_int_nonnegative(pz), I(g.max_base.z));
+    fx = min(px - to_float(ix), F(1.0f));
+    fy = min(py - to_float(iy), F(1.0f));
+    fz = min(pz - to_float(iz), F(1.0f));
+    base = X(ix) + X(g.dims.x) * (X(iy) + X(g.dims.y) * X(iz));
+  }
+};
+
 // Trilinear sample at index-space positions, clamped to the grid.
 template <class L, class T>
 PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Float trilinear(const VoxelGrid& g, const T* data,
                                                               const typename L::Vec3& p) {
   using F = typename L::Float;
-  using I = typename L::Int;
   using X = typename L::Index;
-  const F px = clamp(p.x, F(0.0f), F(g.upper.x));
-  const F py = clamp(p.y, F(0.0f), F(g.upper.y));
-  const F pz = clamp(p.z, F(0.0f), F(g.upper.z));
-  const I ix = min(to_int_nonnegative(px), I(g.max_base.x));
-  const I iy = min(to_int_nonnegative(py), I(g.max_base.y));
-  const I iz = min(to_int_nonnegative(pz), I(g.max_base.z));
-  const F fx = min(px - to_float(ix), F(1.0f));
-  const F fy = min(py - to_float(iy), F(1.0f));
-  const F fz = min(pz - to_float(iz), F(1.0f));
-  const X base = X(ix) + X(g.dims.x) * (X(iy) + X(g.dims.y) * X(iz));
+  const GridCell<L> cell(g, p);
+  const X& base = cell.base;
+  const F &fx = cell.fx, &fy = cell.fy, &fz = cell.fz;
   F c000, c100, c010, c110, c001, c101, c011, c111;
   load_voxel_pair(data, base, g.stride_x, g.count, c000, c100);
   load_voxel_pair(data, base + X(g.stride_y), g.stride_x, g.count, c010, c110);
