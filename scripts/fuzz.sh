@@ -31,7 +31,7 @@ fi
 
 CC="$cc" CXX="$cxx" cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -gline-tables-only" -DPENUMBRA_FUZZ=ON \
-  -DPENUMBRA_NATIVE=OFF > /dev/null
+  -DPENUMBRA_NATIVE=OFF -DPENUMBRA_ENABLE_CUDA=OFF > /dev/null
 targets=(fuzz_make_seeds)
 for h in "${harnesses[@]}"; do targets+=("fuzz_$h"); done
 cmake --build "$build" --target "${targets[@]}"

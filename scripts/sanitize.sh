@@ -27,7 +27,7 @@ start=$(date +%s)
 if [ "${SANITIZE_RUN_ONLY:-0}" != 1 ]; then
   "$root/scripts/install-deps.sh" --clang
   CC=clang-14 CXX=clang++-14 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" -DPENUMBRA_SANITIZE=address,undefined -DPENUMBRA_BUILD_TESTS=ON -DPENUMBRA_SIMD=OFF > /dev/null
+    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" -DPENUMBRA_SANITIZE=address,undefined -DPENUMBRA_BUILD_TESTS=ON -DPENUMBRA_SIMD=OFF -DPENUMBRA_ENABLE_CUDA=OFF > /dev/null
   cmake --build "$build" -j "$jobs" --target penumbra_tests penumbra_server_tests penumbra_fuzz_regressions
 fi
 built=$(date +%s)

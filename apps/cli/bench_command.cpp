@@ -59,12 +59,12 @@ void bench_technique(Scene scene, const TechniqueInfo& info, const BenchOptions&
   fmt::print(
       "{{\"technique\": \"{}\", \"volume\": \"{}\", \"dims\": [{}, {}, {}], \"image\": [{}, {}], "
       "\"tf_change_ms\": {:.3f}, \"light_move_ms\": {:.3f}, \"frame_ms_median\": {:.3f}, \"frame_ms_min\": {:.3f}, "
-      "\"aux_bytes\": {}, \"threads\": {}, \"simd\": \"{}\", \"samples_per_frame\": {}, \"samples_per_s\": {:.4g}, "
+      "\"aux_bytes\": {}, \"threads\": {}, \"simd\": \"{}\", \"device\": \"{}\", \"samples_per_frame\": {}, \"samples_per_s\": {:.4g}, "
       "\"samples_per_s_per_thread\": {:.4g}, "
       "\"passes_per_frame\": {}}}\n",
       info.name, volume, d.x, d.y, d.z, scene.render().width, scene.render().height, changes.tf_change_ms,
       changes.light_move_ms, median(frame_ms), *std::min_element(frame_ms.begin(), frame_ms.end()),
-      technique->aux_bytes(), thread_count(), to_string(stats.simd), stats.samples / std::uint64_t(options.frames),
+      technique->aux_bytes(), thread_count(), to_string(stats.simd), to_string(stats.device), stats.samples / std::uint64_t(options.frames),
       total_ms > 0.0 ? double(stats.samples) / (total_ms * 1e-3) : 0.0,
       total_ms > 0.0 ? double(stats.samples) / (total_ms * 1e-3) / thread_count() : 0.0,
       stats.passes / std::uint64_t(options.frames));

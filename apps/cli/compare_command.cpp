@@ -93,13 +93,13 @@ void write_reports(const std::filesystem::path& dir, const CompareOptions& optio
                       noise->mean, noise->p99);
   }
   md += ".\n\n![comparison](grid.png)\n\n";
-  md += "| technique | RMSE | PSNR dB | SSIM | mean dE | p99 dE | tf_change ms | light_move ms | frame ms | aux MB |\n";
-  md += "|---|---|---|---|---|---|---|---|---|---|\n";
+  md += "| technique | RMSE | PSNR dB | SSIM | mean dE | p99 dE | tf_change ms | light_move ms | frame ms | aux MB | device |\n";
+  md += "|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const ComparedTechnique& r : comparison.techniques) {
     const TechniqueTimings& t = r.run.timings;
-    md += fmt::format("| {} | {:.4f} | {:.2f} | {:.4f} | {:.2f} | {:.2f} | {:.1f} | {:.1f} | {:.1f} | {:.2f} |\n",
+    md += fmt::format("| {} | {:.4f} | {:.2f} | {:.4f} | {:.2f} | {:.2f} | {:.1f} | {:.1f} | {:.1f} | {:.2f} | {} |\n",
                       r.run.name, r.metrics.rmse, r.metrics.psnr, r.metrics.ssim, r.metrics.mean_de,
-                      r.metrics.p99_de, t.tf_change_ms, t.light_move_ms, t.frame_ms, double(t.aux_bytes) / 1048576.0);
+                      r.metrics.p99_de, t.tf_change_ms, t.light_move_ms, t.frame_ms, double(t.aux_bytes) / 1048576.0, to_string(t.device));
   }
   md += "\nPer technique: `<name>.png`/`.exr` (linear), `<name>-de.png` (CIEDE2000 against the reference), "
         "`<name>-luminance.png` (blue: darker than the reference, red: brighter). Metrics: "

@@ -2,6 +2,7 @@
 #include "commands.h"
 
 #include "penumbra/backends/cpu/packets.h"
+#include "penumbra/backends/device.h"
 #include "penumbra/base/error.h"
 #include "penumbra/base/parallel.h"
 
@@ -20,9 +21,14 @@ int main(int argc, char** argv) {
   app.add_option("--simd", simd,
                  "packet path of the shared marching loop: auto (the widest this CPU has), off (one ray at a time), "
                  "avx2 (8 rays), avx512 (16 rays)");
+  std::string device = "auto";
+  app.add_option("--device", device,
+                 "where techniques with a CUDA path render: auto (cuda when this build has the backend and a GPU is "
+                 "present), cpu, cuda");
   app.parse_complete_callback([&] {
     penumbra::set_thread_count(threads);
     penumbra::set_simd_mode(penumbra::parse_simd_mode(simd));
+    penumbra::set_device_mode(penumbra::parse_device_mode(device));
   });
   penumbra::cli::add_render_command(app);
   penumbra::cli::add_info_command(app);

@@ -24,8 +24,19 @@ Scene procedural_scene(const std::string& builtin, ivec3 size, int image_size) {
   return scene;
 }
 
+std::filesystem::path source_dir() {
+  // A bundled test binary (scripts/gpu-bundle.sh) runs away from its checkout.
+  if (const char* dir = std::getenv("PENUMBRA_TEST_SOURCE_DIR")) return dir;
+  return PENUMBRA_SOURCE_DIR;
+}
+
+std::filesystem::path shared_data_dir() {
+  if (const char* dir = std::getenv("PENUMBRA_TEST_SHARED_DATA_DIR")) return dir;
+  return PENUMBRA_SHARED_DATA_DIR;
+}
+
 Scene repository_scene(const std::string& relative_path, int image_size) {
-  Scene scene = load_scene(std::filesystem::path(PENUMBRA_SOURCE_DIR) / relative_path);
+  Scene scene = load_scene(source_dir() / relative_path);
   RenderSettings r = scene.render();
   r.width = r.height = image_size;
   scene.set_render(r);

@@ -5,6 +5,7 @@
 #include "penumbra/scene/scene.h"
 #include "penumbra/volume/procedural.h"
 
+#include <filesystem>
 #include <string>
 
 namespace penumbra::testing {
@@ -30,6 +31,11 @@ void save_test_image(const Image& image, const std::string& name);
 
 // A scene file of the repository (path relative to its root, e.g.
 // "scenes/plate-over-plane.json"), rendered at image_size^2.
+// The checkout and ../shared/data (PENUMBRA_TEST_SOURCE_DIR and
+// PENUMBRA_TEST_SHARED_DATA_DIR override them for a bundled test binary).
+std::filesystem::path source_dir();
+std::filesystem::path shared_data_dir();
+
 Scene repository_scene(const std::string& relative_path, int image_size);
 
 // Renders with a registered technique and parameters (name=value pairs).

@@ -18,6 +18,7 @@
 //                                    const LightSampleL<L>&, L::Mask active) const
 // Without it, packets call operator() lane by lane (L::scalarize).
 #include "penumbra/backends/cpu/packets.h"
+#include "penumbra/backends/device.h"
 #include "penumbra/base/lanes.h"
 #include "penumbra/render/march.h"
 #include "penumbra/scene/light.h"
@@ -126,6 +127,7 @@ PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Vec3 cached_visibility(const Volum
 }
 
 struct NoShadows {
+  template <class Mirror> NoShadows on_device(Mirror&) const { return *this; }
   PENUMBRA_HD vec3 operator()(int, vec3, const LightSample&) const { return vec3(1.0f); }
   template <class L>
   PENUMBRA_HD typename L::Vec3 lanes(int, const typename L::Vec3&, const LightSampleL<L>&, typename L::Mask) const {
@@ -138,6 +140,12 @@ struct ScatteringLighting {
   const RenderView* view;
   Visibility visibility;
   Shading shading;
+
+  // The device copy (backends/device.h): the view and the visibility's
+  // structures mirrored.
+  template <class Mirror> ScatteringLighting on_device(Mirror& m) const {
+    return ScatteringLighting{m.view(*view), visibility.on_device(m), shading};
+  }
 
   template <class L>
   PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Vec3 sample(const SamplePointL<L>& s, typename L::Mask active) const {
@@ -204,6 +212,7 @@ struct ScatteringLighting {
 // show their colour.
 struct EmissionLighting {
   const RenderView* view;
+  template <class Mirror> EmissionLighting on_device(Mirror& m) const { return EmissionLighting{m.view(*view)}; }
   template <class L>
   PENUMBRA_HD typename L::Vec3 sample(const SamplePointL<L>& s, typename L::Mask) const {
     return s.color;
@@ -214,5 +223,7 @@ struct EmissionLighting {
 
 PENUMBRA_PACKET_LIGHTING(EmissionLighting);
 PENUMBRA_PACKET_LIGHTING(ScatteringLighting<NoShadows>);
+PENUMBRA_DEVICE_LIGHTING(EmissionLighting);
+PENUMBRA_DEVICE_LIGHTING(ScatteringLighting<NoShadows>);
 
 }  // namespace penumbra

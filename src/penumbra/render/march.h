@@ -150,12 +150,20 @@ PENUMBRA_HD float march_transmittance(const RenderView& v, const Sampler& sample
   return march_transmittance<ScalarLanes>(v, sampler, &ray, &t_max, density_scale, true, stats);
 }
 
-// The same, dispatching on the voxel type (one switch per ray).
+// The same, dispatching on the voxel type (one switch per ray). Device code
+// switches per sample instead (AnyVoxelSampler, uniform across a warp): one
+// instance of the loop rather than one per voxel type keeps CUDA compile
+// time down.
 PENUMBRA_HD inline float march_transmittance(const RenderView& v, const Ray& ray, float t_max, float density_scale,
                                              RayStats& stats) {
+#if defined(__CUDA_ARCH__)
+  const AnyVoxelSampler sampler(v.volume.data, v.volume.dims, v.volume.type);
+  return march_transmittance(v, sampler, ray, t_max, density_scale, stats);
+#else
   return with_sampler(v.volume, [&](const auto& sampler) {
     return march_transmittance(v, sampler, ray, t_max, density_scale, stats);
   });
+#endif
 }
 
 // Nearest opaque plane along the ray in (0, t_max); returns its index or -1.

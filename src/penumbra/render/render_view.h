@@ -9,12 +9,14 @@
 #include "penumbra/scene/light.h"
 #include "penumbra/scene/material.h"
 #include "penumbra/scene/plane.h"
+#include "penumbra/scene/scene_versions.h"
 #include "penumbra/scene/transfer_function.h"
 #include "penumbra/volume/macrocell_grid.h"
 #include "penumbra/volume/normal_volume.h"
 #include "penumbra/volume/volume_view.h"
 
 #include <cstdint>
+#include <memory>
 
 namespace penumbra {
 
@@ -43,6 +45,16 @@ struct RenderView {
   CameraView camera;
   int width = 0;
   int height = 0;
+
+  // Host side only (a device copy carries but never reads them): the scene's
+  // versions when the view was made, the version of the technique's own
+  // structures (its rebuilds() count), and the slot where a device backend
+  // keeps the mirrors of this view's arrays (SceneResources owns it, so the
+  // mirrors live as long as the technique). The CUDA backend re-uploads an
+  // array only when a version it depends on changed.
+  SceneVersions versions;
+  std::uint64_t structures = 0;
+  std::shared_ptr<void>* device_state = nullptr;
 
   // The majorant of the macrocell around an index-space point (clamped to
   // the grid): 0 where no sample can have extinction, so a kernel may skip

@@ -78,6 +78,8 @@ RenderView SceneResources::view(const Scene& scene) const {
   r.camera = scene.camera().view();
   r.width = scene.render().width;
   r.height = scene.render().height;
+  r.versions = scene.versions();
+  r.device_state = &device_state_;
   return r;
 }
 

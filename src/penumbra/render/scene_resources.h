@@ -9,6 +9,7 @@
 #include "penumbra/scene/scene.h"
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace penumbra {
@@ -43,6 +44,8 @@ class SceneResources {
   bool separate_shadow_tf_ = false;
   TransferFunctionTable shadow_tf_table_;
   MajorantGrid shadow_majorants_;
+  // A device backend's mirrors of the views' arrays (RenderView::device_state).
+  mutable std::shared_ptr<void> device_state_;
 };
 
 }  // namespace penumbra

@@ -70,6 +70,10 @@ struct TechniqueInfo {
   ParameterTable parameters;
   std::function<std::unique_ptr<Technique>()> create;
   bool draws_meshes = false;  // whether it draws the scene's meshes (scene/mesh.h)
+  // Whether its frames render on the CUDA device when CUDA is active (the
+  // registry sets it; backends/device.h). The others render on the CPU and
+  // say so once on stderr.
+  bool has_cuda_path = false;
 };
 
 }  // namespace penumbra

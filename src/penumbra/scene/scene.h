@@ -6,6 +6,7 @@
 // measurable costs, as in the papers' tables).
 #include "penumbra/base/math.h"
 #include "penumbra/scene/camera.h"
+#include "penumbra/scene/scene_versions.h"
 #include "penumbra/scene/light.h"
 #include "penumbra/scene/material.h"
 #include "penumbra/scene/mesh.h"
@@ -48,17 +49,6 @@ struct VolumeSource {
   ivec3 size{0};
   std::optional<vec3> spacing;  // overrides of the file's values, if given
   std::optional<vec3> origin;
-};
-
-struct SceneVersions {
-  std::uint64_t data = 0;  // volume or time step
-  std::uint64_t transfer_function = 0;
-  std::uint64_t lights = 0;
-  std::uint64_t camera = 0;
-  std::uint64_t material = 0;  // material and background
-  std::uint64_t geometry = 0;  // planes and clip planes
-  std::uint64_t render = 0;    // image size, step, technique, parameters
-  std::uint64_t meshes = 0;    // meshes, their placement and materials
 };
 
 class Scene {

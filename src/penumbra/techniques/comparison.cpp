@@ -23,10 +23,12 @@ TechniqueRun run_technique(const Scene& scene, const TechniqueInfo& info, const 
   std::vector<double> frame_ms;
   for (int f = 0; f < frames; ++f) {
     Image image;
+    RenderStats stats;
     const auto t0 = Clock::now();
     technique->prepare(scene, params);
-    technique->render(scene, image);
+    technique->render(scene, image, &stats);
     frame_ms.push_back(elapsed_ms(t0));
+    r.timings.device = stats.device;
     if (f == 0) r.image = std::move(image);
   }
   r.timings.frame_ms = median(frame_ms);
@@ -153,11 +155,11 @@ std::string comparison_report_json(const Comparison& comparison, const std::stri
     json += fmt::format(
         "    {{\"technique\": {}, \"params\": {}, \"rmse\": {}, \"psnr\": {}, \"ssim\": {}, \"mean_de\": {}, "
         "\"p99_de\": {}, \"max_de\": {}, \"tf_change_ms\": {}, \"light_move_ms\": {}, \"frame_ms\": {}, "
-        "\"aux_bytes\": {}}}{}\n",
+        "\"aux_bytes\": {}, \"device\": \"{}\"}}{}\n",
         json_string(r.run.name), json_parameters(r.run.params), json_number(r.metrics.rmse),
         json_number(r.metrics.psnr), json_number(r.metrics.ssim), json_number(r.metrics.mean_de),
         json_number(r.metrics.p99_de), json_number(r.metrics.max_de), json_number(t.tf_change_ms),
-        json_number(t.light_move_ms), json_number(t.frame_ms), t.aux_bytes, i + 1 < results.size() ? "," : "");
+        json_number(t.light_move_ms), json_number(t.frame_ms), t.aux_bytes, to_string(t.device), i + 1 < results.size() ? "," : "");
   }
   json += "  ]\n}\n";
   return json;

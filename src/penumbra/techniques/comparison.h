@@ -12,6 +12,8 @@
 #include "penumbra/render/technique.h"
 #include "penumbra/techniques/pathtrace/pathtrace.h"
 
+#include "penumbra/backends/device.h"
+
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -25,6 +27,7 @@ struct TechniqueTimings {
   double light_move_ms = 0.0;
   double frame_ms = 0.0;
   std::uint64_t aux_bytes = 0;
+  Device device = Device::Cpu;  // where its frames rendered
 };
 
 struct TechniqueRun {

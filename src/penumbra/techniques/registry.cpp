@@ -1,5 +1,6 @@
 #include "penumbra/techniques/registry.h"
 
+#include "penumbra/backends/device.h"
 #include "penumbra/base/error.h"
 #include "penumbra/techniques/emission_absorption/emission_absorption.h"
 #include "penumbra/techniques/phong/phong.h"
@@ -20,24 +21,50 @@
 #include <fmt/ranges.h>
 
 namespace penumbra {
+namespace {
+
+// The techniques whose frames render on the CUDA device (their Lightings are
+// declared with PENUMBRA_DEVICE_LIGHTING and instantiated in a .cu unit).
+TechniqueInfo with_cuda_path(TechniqueInfo info) {
+  info.has_cuda_path = true;
+  return info;
+}
+
+// Every technique without one says once, when it is created while CUDA is
+// active, that it renders on the CPU.
+TechniqueInfo noting_device(TechniqueInfo info) {
+  if (!info.has_cuda_path) {
+    info.create = [create = info.create, name = info.name] {
+      if (active_device() == Device::Cuda) note_cpu_fallback(name.c_str());
+      return create();
+    };
+  }
+  return info;
+}
+
+}  // namespace
 
 const std::vector<TechniqueInfo>& technique_registry() {
-  static const std::vector<TechniqueInfo> registry = {
-      emission_absorption_info(),
-      phong_info(),
-      shadow_rays_info(),
-      pathtrace_info(),
-      shadow_map_info(),
-      deep_shadow_map_info(),
-      cssm_info(),
-      filtered_sat_info(),
-      sat_ao_info(),
-      cone_shadows_info(),
-      ipsvi_info(),
-      half_angle_info(),
-      occlusion_map_info(),
-      convolution_info(),
-  };
+  static const std::vector<TechniqueInfo> registry = [] {
+    std::vector<TechniqueInfo> r = {
+        with_cuda_path(emission_absorption_info()),
+        with_cuda_path(phong_info()),
+        with_cuda_path(shadow_rays_info()),
+        pathtrace_info(),
+        with_cuda_path(shadow_map_info()),
+        with_cuda_path(deep_shadow_map_info()),
+        with_cuda_path(cssm_info()),
+        filtered_sat_info(),
+        sat_ao_info(),
+        cone_shadows_info(),
+        ipsvi_info(),
+        half_angle_info(),
+        occlusion_map_info(),
+        convolution_info(),
+    };
+    for (TechniqueInfo& info : r) info = noting_device(std::move(info));
+    return r;
+  }();
   return registry;
 }
 

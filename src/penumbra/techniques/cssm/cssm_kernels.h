@@ -124,6 +124,12 @@ inline constexpr float kCssmMaxSlope = 8.0f;
 // of the light's view (resolution is a quality control).
 struct CssmVisibility {
   const LightMapView* maps;
+  // The device copy (backends/device.h).
+  template <class Mirror> CssmVisibility on_device(Mirror& m) const {
+    CssmVisibility d = *this;
+    d.maps = light_maps_on_device(maps, m);
+    return d;
+  }
   vec2 offsets[kMaxCssmOffsets];  // texels of the map
   int offset_count;
   bool depth_aware = true;
@@ -229,5 +235,6 @@ inline CssmVisibility make_cssm_visibility(const LightMapView* maps, int count, 
 }
 
 PENUMBRA_PACKET_LIGHTING(ScatteringLighting<CssmVisibility>);
+PENUMBRA_DEVICE_LIGHTING(ScatteringLighting<CssmVisibility>);
 
 }  // namespace penumbra

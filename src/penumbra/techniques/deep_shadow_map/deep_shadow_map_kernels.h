@@ -79,6 +79,12 @@ inline constexpr float kDeepShadowMaxSlope = 8.0f;
 // same depth below a planar occluder as the sample.
 struct DeepShadowVisibility {
   const LightMapView* maps;
+  // The device copy (backends/device.h).
+  template <class Mirror> DeepShadowVisibility on_device(Mirror& m) const {
+    DeepShadowVisibility d = *this;
+    d.maps = light_maps_on_device(maps, m);
+    return d;
+  }
   int node_count;
   bool bilinear;
   float slope_bias = 1.0f;
@@ -141,5 +147,6 @@ struct DeepShadowVisibility {
 };
 
 PENUMBRA_PACKET_LIGHTING(ScatteringLighting<DeepShadowVisibility>);
+PENUMBRA_DEVICE_LIGHTING(ScatteringLighting<DeepShadowVisibility>);
 
 }  // namespace penumbra

@@ -122,6 +122,17 @@ struct LightMapView {
   }
 };
 
+// The device copy of one view per light (backends/device.h's on_device): the
+// texels mirrored, the views copied for the frame.
+template <class Mirror> const LightMapView* light_maps_on_device(const LightMapView* maps, Mirror& m) {
+  std::vector<LightMapView> copy(maps, maps + m.light_count());
+  for (LightMapView& map : copy) {
+    map.texels = m.structure(map.texels, std::size_t(map.projection.texel_count()) * std::size_t(map.values_per_texel),
+                             "the light maps");
+  }
+  return m.frame(copy, "the light map views");
+}
+
 class LightMap {
  public:
   LightMap() = default;

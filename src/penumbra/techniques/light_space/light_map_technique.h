@@ -42,7 +42,9 @@ class LightMapTechnique : public Technique {
   template <class Visibility>
   void render_lit(const Scene& scene, const Visibility& visibility, Image& image, RenderStats* stats) {
     maps_.check_ready(scene);
-    penumbra::render_lit(resources_.view(scene), visibility, scene.material().shading, image, stats);
+    RenderView view = resources_.view(scene);
+    view.structures = rebuilds_;  // the maps' version, for device mirrors
+    penumbra::render_lit(view, visibility, scene.material().shading, image, stats);
   }
 
  private:

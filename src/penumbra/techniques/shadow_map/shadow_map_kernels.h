@@ -61,6 +61,12 @@ inline constexpr float kShadowMapMaxSlope = 8.0f;
 // at the sample's own ray.
 struct ShadowMapVisibility {
   const LightMapView* maps;
+  // The device copy (backends/device.h).
+  template <class Mirror> ShadowMapVisibility on_device(Mirror& m) const {
+    ShadowMapVisibility d = *this;
+    d.maps = light_maps_on_device(maps, m);
+    return d;
+  }
   int pcf_radius;
   float bias;  // world units
   float slope_bias = 1.0f;
@@ -103,5 +109,6 @@ struct ShadowMapVisibility {
 };
 
 PENUMBRA_PACKET_LIGHTING(ScatteringLighting<ShadowMapVisibility>);
+PENUMBRA_DEVICE_LIGHTING(ScatteringLighting<ShadowMapVisibility>);
 
 }  // namespace penumbra

@@ -13,6 +13,10 @@ struct ShadowRayVisibility {
   const RenderView* view;  // the shadow view (shadow TF, its majorants)
   float density_scale;
 
+  template <class Mirror> ShadowRayVisibility on_device(Mirror& m) const {
+    return ShadowRayVisibility{m.view(*view), density_scale};
+  }
+
   PENUMBRA_HD vec3 operator()(int, vec3 p, const LightSample& ls) const {
     RayStats unused;
     return vec3(march_transmittance(*view, Ray{p, ls.to_light}, ls.distance, density_scale, unused));
@@ -41,6 +45,10 @@ struct CachedShadowRayVisibility {
   ShadowRayVisibility rays;
   const VolumeView* caches;  // per light
 
+  template <class Mirror> CachedShadowRayVisibility on_device(Mirror& m) const {
+    return CachedShadowRayVisibility{rays.on_device(m), m.volumes(caches, m.light_count(), "the shadow caches")};
+  }
+
   PENUMBRA_HD vec3 operator()(int light, vec3 p, const LightSample& ls) const {
     return lanes<ScalarLanes>(light, p, ls, true);
   }
@@ -53,5 +61,7 @@ struct CachedShadowRayVisibility {
 
 PENUMBRA_PACKET_LIGHTING(ScatteringLighting<ShadowRayVisibility>);
 PENUMBRA_PACKET_LIGHTING(ScatteringLighting<CachedShadowRayVisibility>);
+PENUMBRA_DEVICE_LIGHTING(ScatteringLighting<ShadowRayVisibility>);
+PENUMBRA_DEVICE_LIGHTING(ScatteringLighting<CachedShadowRayVisibility>);
 
 }  // namespace penumbra

@@ -39,7 +39,8 @@ class ShadowRays final : public Technique {
   }
 
   void render(const Scene& scene, Image& image, RenderStats* stats) override {
-    const RenderView view = resources_.view(scene);
+    RenderView view = resources_.view(scene);
+    view.structures = rebuilds_;  // the caches' version, for device mirrors
     const RenderView shadows = resources_.shadow_view(scene);
     const Shading shading = scene.material().shading;
     const ShadowRayVisibility rays{&shadows, density_scale_};

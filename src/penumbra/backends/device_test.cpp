@@ -1,0 +1,322 @@
+// The device choice and the CUDA backend.
+//
+// On every machine: `--device` parsing, that Auto renders on the CPU where no
+// GPU is present, and what the device cache uploads when (through host
+// memory: DeviceMirror and DeviceCache are plain host code).
+//
+// On a machine with a CUDA device (skipped elsewhere, as ctest skips): every
+// technique with a CUDA path renders the same images on both devices, on a
+// procedural scene, the engine CT and the head CT; a light move and a TF
+// change on the device give the image of a fresh render; an unchanged scene
+// uploads nothing; a device memory budget too small gives OutOfMemoryBudget.
+#include "penumbra/analysis/image_metrics.h"
+#include "penumbra/backends/cuda/device_cache.h"
+#include "penumbra/backends/cuda/device_mirror.h"
+#include "penumbra/backends/device.h"
+#include "penumbra/base/error.h"
+#include "penumbra/render/scene_resources.h"
+#include "penumbra/techniques/registry.h"
+#include "test_scene.h"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace penumbra {
+namespace {
+
+struct DeviceModeGuard {
+  DeviceMode saved = device_mode();
+  std::uint64_t budget = device_memory_budget_bytes();
+  ~DeviceModeGuard() {
+    set_device_mode(saved);
+    set_device_memory_budget_bytes(budget);
+  }
+};
+
+TEST(Device, ModesParseAndUnknownNamesNameTheOption) {
+  EXPECT_EQ(parse_device_mode("auto"), DeviceMode::Auto);
+  EXPECT_EQ(parse_device_mode("cpu"), DeviceMode::Cpu);
+  try {
+    parse_device_mode("gpu");
+    FAIL() << "'gpu' was accepted";
+  } catch (const InvalidArgument& e) {
+    EXPECT_EQ(e.name(), "--device");
+  }
+  if (!cuda_built() || cuda_device_count() == 0) {
+    EXPECT_THROW(parse_device_mode("cuda"), InvalidArgument);
+  } else {
+    EXPECT_EQ(parse_device_mode("cuda"), DeviceMode::Cuda);
+  }
+  EXPECT_STREQ(to_string(Device::Cuda), "cuda");
+  EXPECT_STREQ(to_string(Device::Cpu), "cpu");
+}
+
+TEST(Device, AutoRendersOnTheCpuWithoutAGpu) {
+  if (cuda_built() && cuda_device_count() > 0) GTEST_SKIP() << "a CUDA device is present";
+  DeviceModeGuard guard;
+  set_device_mode(DeviceMode::Auto);
+  EXPECT_EQ(active_device(), Device::Cpu);
+  const TechniqueInfo& info = find_technique("phong");
+  auto technique = info.create();
+  const Scene scene = testing::lit_spheres(16);
+  technique->prepare(scene, ParameterValues(info.parameters));
+  Image image;
+  RenderStats stats;
+  technique->render(scene, image, &stats);
+  EXPECT_EQ(stats.device, Device::Cpu);
+  EXPECT_GT(stats.samples, 0u);
+}
+
+// The mirror of a view, through host memory: every array copied with its
+// contents, uploaded again only when a version it depends on changes.
+TEST(DeviceMirror, UploadsAnArrayOnlyWhenWhatItDependsOnChanged) {
+  Scene scene = testing::with_floor(testing::lit_spheres(16));
+  SceneResources resources;
+  resources.update(scene, true);
+  RenderView host = resources.view(scene);
+  DeviceCache cache(host_memory());
+
+  const auto mirror_once = [&](const RenderView& view) {
+    cache.begin_frame();
+    DeviceMirror mirror(cache, view);
+    const RenderView* d = mirror.view(view);
+    EXPECT_EQ(mirror.view(view), d) << "one device copy per host view and frame";
+    RenderView copy = *d;
+    cache.end_frame();
+    return copy;
+  };
+  const RenderView d = mirror_once(host);
+  const std::uint64_t first = cache.uploads();
+  // volume, macrocells, majorants, empty distances, TF entries and sigma, normals
+  EXPECT_EQ(first, 7u);
+  ASSERT_NE(d.volume.data, host.volume.data);
+  const std::size_t volume_bytes = std::size_t(host.volume.dims.x) * host.volume.dims.y * host.volume.dims.z *
+                                   voxel_size(host.volume.type);
+  EXPECT_EQ(std::memcmp(d.volume.data, host.volume.data, volume_bytes), 0);
+  EXPECT_EQ(std::memcmp(d.tf.sigma, host.tf.sigma, sizeof(float) * host.tf.size), 0);
+  ASSERT_EQ(d.light_count, host.light_count);
+  EXPECT_NE(d.lights, host.lights);
+  EXPECT_EQ(d.lights[0].intensity, host.lights[0].intensity);
+  ASSERT_EQ(d.plane_count, 1);
+  EXPECT_EQ(d.planes[0].color, host.planes[0].color);
+  EXPECT_EQ(d.device_state, nullptr);
+
+  // Unchanged scene, moved camera: nothing uploaded.
+  mirror_once(host);
+  Scene moved = scene;
+  Camera camera = moved.camera();
+  camera.eye += vec3(1.0f, 0.0f, 0.0f);
+  moved.set_camera(camera);
+  mirror_once(resources.view(moved));
+  EXPECT_EQ(cache.uploads(), first);
+
+  // A TF change: the TF tables, majorants, empty distances and macrocells
+  // again, not the volume or its normals.
+  Scene edited = scene;
+  TransferFunction tf = edited.transfer_function();
+  tf.set_range(edited.tf_value_range() * 1.5f);
+  edited.set_transfer_function(tf);
+  resources.update(edited, true);
+  const RenderView after_tf = mirror_once(resources.view(edited));
+  EXPECT_EQ(cache.uploads(), first + 5);
+  EXPECT_EQ(after_tf.volume.data, d.volume.data);
+
+  // A technique structure follows the technique's rebuild count.
+  std::vector<float> table(64, 1.0f);
+  const auto structure_once = [&](std::uint64_t rebuilds) {
+    RenderView v = resources.view(edited);
+    v.structures = rebuilds;
+    cache.begin_frame();
+    DeviceMirror mirror(cache, v);
+    mirror.view(v);
+    const float* device = mirror.structure(table.data(), table.size());
+    const float value = device[0];
+    cache.end_frame();
+    return value;
+  };
+  const std::uint64_t before = cache.uploads();
+  EXPECT_EQ(structure_once(1), 1.0f);
+  table[0] = 2.0f;
+  EXPECT_EQ(structure_once(1), 1.0f) << "same version: the old upload stays";
+  EXPECT_EQ(structure_once(2), 2.0f) << "a rebuild uploads again";
+  EXPECT_EQ(cache.uploads(), before + 2);
+}
+
+TEST(DeviceMirror, ABudgetTooSmallIsAClearError) {
+  DeviceModeGuard guard;
+  const Scene scene = testing::lit_spheres(16);
+  SceneResources resources;
+  resources.update(scene);
+  const RenderView host = resources.view(scene);
+  DeviceCache cache(host_memory());
+  set_device_memory_budget_bytes(1024);
+  cache.begin_frame();
+  DeviceMirror mirror(cache, host);
+  try {
+    mirror.view(host);
+    FAIL() << "the volume fit in 1 KiB";
+  } catch (const OutOfMemoryBudget& e) {
+    EXPECT_NE(std::string(e.what()).find("device memory for the volume"), std::string::npos) << e.what();
+  }
+  EXPECT_LE(cache.bytes(), 1024u);
+}
+
+// ---- on a CUDA device ----
+
+bool have_gpu() { return cuda_built() && cuda_device_count() > 0; }
+
+struct DeviceScene {
+  std::string name;
+  Scene scene;
+};
+
+std::vector<DeviceScene> device_scenes() {
+  std::vector<DeviceScene> scenes;
+  scenes.push_back({"spheres-floor", testing::with_floor(testing::lit_spheres(64))});
+  const std::filesystem::path data = testing::shared_data_dir();
+  if (std::filesystem::exists(data / "engine_256x256x128_uint8.nhdr")) {
+    scenes.push_back({"engine-point", testing::repository_scene("scenes/engine-point.json", 96)});
+  }
+  if (std::filesystem::exists(data / "ct_head_cranium_256x256x108_int16.nhdr")) {
+    scenes.push_back({"head-point", testing::repository_scene("scenes/head-point.json", 96)});
+  }
+  return scenes;
+}
+
+ParameterValues device_params(const TechniqueInfo& info) {
+  ParameterValues params(info.parameters);
+  ParameterSettings p;
+  if (const ParameterSpec* r = info.parameters.find("resolution"); r && r->min <= 512.0 && 512.0 <= r->max) {
+    p["resolution"] = 512.0;
+  }
+  params.apply(p, true);
+  return params;
+}
+
+Image render_on(Device device, const Scene& scene, const TechniqueInfo& info, const ParameterValues& params,
+                RenderStats& stats) {
+  set_device_mode(device == Device::Cuda ? DeviceMode::Cuda : DeviceMode::Cpu);
+  auto technique = info.create();
+  technique->prepare(scene, params);
+  Image image;
+  technique->render(scene, image, &stats);
+  return image;
+}
+
+// Both devices compute the same floats in a different order (FMA
+// contraction on the GPU, other rounding of exp and pow), which moves a
+// sample across an ERT or a depth threshold in a few pixels at most: RMSE
+// 1e-3 linear is ten times the packet path's bound (packets_test.cpp) and
+// far below one visible step; mean dE 0.05 with p99 0.5.
+constexpr double kRmse = 1e-3;
+constexpr double kMeanDe = 0.05;
+constexpr double kP99De = 0.5;
+
+TEST(CudaDevice, EveryTechniqueWithACudaPathMatchesTheCpu) {
+  if (!have_gpu()) GTEST_SKIP() << "no CUDA device (or a build without the CUDA backend)";
+  DeviceModeGuard guard;
+  for (const DeviceScene& ds : device_scenes()) {
+    for (const TechniqueInfo& info : technique_registry()) {
+      if (!info.has_cuda_path) continue;
+      for (bool cache : {false, true}) {
+        ParameterValues params = device_params(info);
+        if (info.parameters.find("shadow_cache")) {
+          params.set("shadow_cache", cache);
+        } else if (cache) {
+          continue;
+        }
+        SCOPED_TRACE(ds.name + " x " + info.name + (cache ? " (cached)" : ""));
+        RenderStats cpu_stats, gpu_stats;
+        const Image cpu = render_on(Device::Cpu, ds.scene, info, params, cpu_stats);
+        const Image gpu = render_on(Device::Cuda, ds.scene, info, params, gpu_stats);
+        EXPECT_EQ(gpu_stats.device, Device::Cuda) << "the technique did not take its CUDA path";
+        EXPECT_LE(rmse(gpu, cpu), kRmse);
+        const DeltaEStats de = delta_e_stats(cpu, gpu);
+        EXPECT_LE(de.mean, kMeanDe);
+        EXPECT_LE(de.p99, kP99De);
+        EXPECT_NEAR(double(gpu_stats.samples), double(cpu_stats.samples), 1e-3 * double(cpu_stats.samples));
+      }
+    }
+  }
+}
+
+TEST(CudaDevice, LightMovesAndTfChangesMatchAFreshRender) {
+  if (!have_gpu()) GTEST_SKIP() << "no CUDA device (or a build without the CUDA backend)";
+  DeviceModeGuard guard;
+  set_device_mode(DeviceMode::Cuda);
+  const Scene scene = testing::repository_scene("scenes/engine-point.json", 96);
+  Scene moved = scene;
+  std::vector<Light> lights = moved.lights();
+  lights[0].position += vec3(30.0f, -20.0f, 10.0f);
+  lights[0].direction = glm::normalize(lights[0].direction + vec3(0.3f, 0.0f, 0.2f));
+  moved.set_lights(lights);
+  Scene edited = moved;
+  TransferFunction tf = edited.transfer_function();
+  tf.set_range(edited.tf_value_range() * vec2(1.2f, 0.9f));
+  edited.set_transfer_function(tf);
+  for (const TechniqueInfo& info : technique_registry()) {
+    if (!info.has_cuda_path) continue;
+    SCOPED_TRACE(info.name);
+    const ParameterValues params = device_params(info);
+    auto live = info.create();
+    Image image;
+    for (const Scene* s : std::initializer_list<const Scene*>{&scene, &moved, &edited}) {
+      live->prepare(*s, params);
+      live->render(*s, image);
+      RenderStats stats;
+      const Image fresh = render_on(Device::Cuda, *s, info, params, stats);
+      EXPECT_EQ(rmse(image, fresh), 0.0) << "a stale device mirror";
+    }
+  }
+}
+
+TEST(CudaDevice, AnUnchangedSceneUploadsNothing) {
+  if (!have_gpu()) GTEST_SKIP() << "no CUDA device (or a build without the CUDA backend)";
+  DeviceModeGuard guard;
+  set_device_mode(DeviceMode::Cuda);
+  const Scene scene = testing::repository_scene("scenes/engine-point.json", 64);
+  for (const TechniqueInfo& info : technique_registry()) {
+    if (!info.has_cuda_path) continue;
+    SCOPED_TRACE(info.name);
+    auto technique = info.create();
+    const ParameterValues params = device_params(info);
+    Image image;
+    technique->prepare(scene, params);
+    technique->render(scene, image);
+    const std::uint64_t uploads = device_uploads();
+    Scene turned = scene;
+    Camera camera = turned.camera();
+    camera.eye += vec3(5.0f, 0.0f, 0.0f);
+    turned.set_camera(camera);
+    for (const Scene* s : std::initializer_list<const Scene*>{&scene, &turned}) {
+      technique->prepare(*s, params);
+      technique->render(*s, image);
+    }
+    EXPECT_EQ(device_uploads(), uploads);
+  }
+}
+
+TEST(CudaDevice, TooLittleDeviceMemoryIsAClearError) {
+  if (!have_gpu()) GTEST_SKIP() << "no CUDA device (or a build without the CUDA backend)";
+  DeviceModeGuard guard;
+  set_device_mode(DeviceMode::Cuda);
+  set_device_memory_budget_bytes(64 * 1024);
+  const TechniqueInfo& info = find_technique("phong");
+  auto technique = info.create();
+  const Scene scene = testing::repository_scene("scenes/engine-point.json", 32);
+  technique->prepare(scene, ParameterValues(info.parameters));
+  Image image;
+  try {
+    technique->render(scene, image);
+    FAIL() << "the engine CT fit in 64 KiB of device memory";
+  } catch (const OutOfMemoryBudget& e) {
+    EXPECT_NE(std::string(e.what()).find("device memory"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace penumbra
