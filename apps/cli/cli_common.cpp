@@ -2,6 +2,7 @@
 
 #include "penumbra/base/error.h"
 #include "penumbra/io/scene_json.h"
+#include "penumbra/techniques/registry.h"
 
 #include <fmt/format.h>
 
@@ -42,10 +43,12 @@ Scene load_scene_for(const SceneOptions& options) {
 ParameterValues resolve_parameters(const Scene& scene, const TechniqueInfo& info,
                                    const std::vector<std::string>& cli_params, bool strict_cli) {
   ParameterValues values(info.parameters);
+  check_technique_prefixes(scene.render().params);
+  const bool own = scene.render().technique == info.name;
   try {
-    values.apply(scene.render().params, scene.render().technique == info.name);
+    values.apply(scene.render().params, own, info.name);
   } catch (const InvalidArgument& e) {
-    throw InvalidScene("render.params." + e.name(), e.what());
+    throw InvalidScene("render.params." + e.name(), fmt::format("technique '{}' refuses it: {}", info.name, e.what()));
   }
   for (const std::string& text : cli_params) {
     const auto eq = text.find('=');
@@ -59,7 +62,16 @@ ParameterValues resolve_parameters(const Scene& scene, const TechniqueInfo& info
       name = name.substr(dot + 1);
     }
     if (!strict_cli && !info.parameters.find(name)) continue;
-    values.set(name, info.parameters.at(name).parse(text.substr(eq + 1)));
+    ParameterValue value;
+    try {
+      value = info.parameters.at(name).parse(text.substr(eq + 1));
+    } catch (const InvalidArgument&) {
+      // A flat name another technique shares with other values (compare
+      // checks that some technique accepts it).
+      if (!strict_cli && text.substr(0, eq).find('.') == std::string::npos) continue;
+      throw;
+    }
+    values.set(name, value);
   }
   return values;
 }

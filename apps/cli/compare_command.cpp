@@ -44,7 +44,9 @@ struct CompareOptions {
 };
 
 // Every --param must name a technique being rendered (technique.k=v) and a
-// parameter it declares, or (k=v) a parameter one of them declares.
+// parameter it declares, or (k=v) a parameter one of them declares and
+// accepts the value of (techniques that share a name with other values skip
+// it: resolve_parameters).
 void check_parameters(const std::vector<std::string>& params, const std::vector<const TechniqueInfo*>& infos) {
   for (const std::string& text : params) {
     std::string name = text.substr(0, text.find('='));
@@ -53,11 +55,21 @@ void check_parameters(const std::vector<std::string>& params, const std::vector<
       owner = name.substr(0, dot);
       name = name.substr(dot + 1);
     }
-    bool declared = false, owner_found = owner.empty();
+    bool declared = false, accepted = false, owner_found = owner.empty();
+    std::string refusal;
+    const std::string value = text.find('=') == std::string::npos ? "" : text.substr(text.find('=') + 1);
     for (const TechniqueInfo* info : infos) {
       if (!owner.empty() && info->name != owner) continue;
       owner_found = true;
-      declared = declared || info->parameters.find(name) != nullptr;
+      const ParameterSpec* spec = info->parameters.find(name);
+      if (!spec) continue;
+      declared = true;
+      try {
+        spec->parse(value);
+        accepted = true;
+      } catch (const InvalidArgument& e) {
+        if (refusal.empty()) refusal = fmt::format("{} refuses it: {}", info->name, e.what());
+      }
     }
     if (!owner_found) {
       throw InvalidArgument("--param", fmt::format("'{}': {} is not among the techniques compared", text, owner));
@@ -67,6 +79,7 @@ void check_parameters(const std::vector<std::string>& params, const std::vector<
                                               "techniques)",
                                               text));
     }
+    if (!accepted) throw InvalidArgument(name, fmt::format("'{}': {}", text, refusal));
   }
 }
 

@@ -34,7 +34,8 @@ void check_technique(const Scene& scene) {
     throw InvalidScene("render.technique", e.what());
   }
   try {
-    ParameterValues(info->parameters).apply(scene.render().params, true);
+    check_technique_prefixes(scene.render().params);
+    ParameterValues(info->parameters).apply(scene.render().params, true, info->name);
   } catch (const InvalidArgument& e) {
     throw InvalidScene("render.params." + e.name(), e.what());
   }

@@ -130,7 +130,7 @@ Frame Session::render(const FrameRequest& request) {
 
   const TechniqueInfo& info = find_technique(settings.technique);
   ParameterValues params(info.parameters);
-  params.apply(settings.params, true);
+  params.apply(settings.params, true, info.name);
   // A terminal progress bar (pathtrace) is for the CLI; server frames of
   // several sessions would draw over each other's.
   if (params.table().find("progress")) params.set("progress", false);

@@ -52,6 +52,23 @@ grep -qF '"psnr": null' "$work/stored/report.json" || fail "identical images sho
 expect 2 "--reference-image" -- "$bin" compare "$scene" --techniques phong --size 16x16 \
   --reference-image "$work/out/reference.exr" -o "$work/x"
 
+# Every technique on a reference scene whose render.params are pathtrace's
+# (occlusion-map's "mode" refuses pathtrace's value and must skip it).
+expect 0 "report.md" -- "$bin" compare "$src/scenes/shell-point.json" --techniques all --size 16x16 --frames 1 \
+  --param resolution=256 --param pathtrace.spp=4 --param pathtrace.min_spp=4 --param pathtrace.target_error=0 \
+  -o "$work/all"
+grep -qF "| occlusion-map |" "$work/all/report.md" || fail "compare --techniques all lacks occlusion-map"
+# Per-technique objects in render.params, and a prefix that names no technique.
+sed 's/"params": {[^}]*}/"params": {"pathtrace": {"mode": "single", "spp": 4, "min_spp": 4, "target_error": 0}, "shadow-rays": {"shadow_cache": true}}/' \
+  "$src/scenes/shell-point.json" > "$work/per-technique.json"
+expect 0 "report.md" -- "$bin" compare "$work/per-technique.json" --techniques shadow-rays,occlusion-map --size 16x16 \
+  --frames 1 -o "$work/per"
+grep -qF '"shadow_cache": true' "$work/per/report.json" || fail "the per-technique shadow_cache did not reach shadow-rays"
+sed 's/"params": {[^}]*}/"params": {"teapot": {"spout": 1}}/' "$src/scenes/shell-point.json" > "$work/bad-prefix.json"
+expect 2 "render.params.teapot" -- "$bin" compare "$work/bad-prefix.json" --techniques phong --size 16x16 -o "$work/x"
+sed 's/"mode": "single"/"mode": "triple"/' "$src/scenes/shell-point.json" > "$work/bad-mode.json"
+expect 2 "technique 'pathtrace' refuses it" -- "$bin" render "$work/bad-mode.json" --size 16x16 -o "$work/x.png"
+
 # Bad input: exit code 2 and one line naming what is wrong.
 expect 2 "unknown technique 'teapot'" -- "$bin" compare "$scene" --techniques shadow-rays,teapot -o "$work/x"
 expect 2 "known: " -- "$bin" compare "$scene" --techniques teapot -o "$work/x"

@@ -253,17 +253,35 @@ RenderSettings read_render(const json& j) {
   if (r.has("params")) {
     const json& p = r.at("params");
     if (!p.is_object()) throw InvalidScene("render.params", "expected an object, got " + type_name(p));
-    for (const auto& item : p.items()) {
-      const json& v = item.value();
-      const std::string key = "render.params." + item.key();
+    // A value, or an object of one technique's values ("technique.name").
+    const auto read_value = [&](const std::string& name, const json& v) {
+      const std::string key = "render.params." + name;
       if (v.is_boolean()) {
-        s.params[item.key()] = v.get<bool>();
+        s.params[name] = v.get<bool>();
       } else if (v.is_number()) {
-        s.params[item.key()] = double(ObjectReader::to_float(v, key));
+        s.params[name] = double(ObjectReader::to_float(v, key));
       } else if (v.is_string()) {
-        s.params[item.key()] = v.get<std::string>();
+        s.params[name] = v.get<std::string>();
       } else {
-        throw InvalidScene(key, "expected a number, boolean or string, got " + type_name(v));
+        throw InvalidScene(key, "expected a number, boolean, string or an object of one technique's parameters, got " +
+                                    type_name(v));
+      }
+    };
+    for (const auto& item : p.items()) {
+      if (item.key().find('.') != std::string::npos) {
+        throw InvalidScene("render.params." + item.key(),
+                           "write a technique's parameters as an object: {\"technique\": {\"name\": value}}");
+      }
+      if (!item.value().is_object()) {
+        read_value(item.key(), item.value());
+        continue;
+      }
+      for (const auto& inner : item.value().items()) {
+        if (inner.value().is_object()) {
+          throw InvalidScene("render.params." + item.key() + "." + inner.key(),
+                             "expected a number, boolean or string, got an object");
+        }
+        read_value(item.key() + "." + inner.key(), inner.value());
       }
     }
   }
@@ -473,8 +491,19 @@ std::string write_scene_json(const Scene& scene) {
   const RenderSettings& rs = scene.render();
   json params = json::object();
   for (const auto& entry : rs.params) {
-    // Not a structured binding: clang 14 cannot capture one in the lambda.
-    std::visit([&](const auto& v) { params[entry.first] = v; }, entry.second);
+    // "technique.name" goes back into the technique's object. (Not a
+    // structured binding: clang 14 cannot capture one in the lambda.)
+    const std::string& key = entry.first;
+    const auto dot = key.find('.');
+    std::visit(
+        [&](const auto& v) {
+          if (dot == std::string::npos) {
+            params[key] = v;
+          } else {
+            params[key.substr(0, dot)][key.substr(dot + 1)] = v;
+          }
+        },
+        entry.second);
   }
   j["render"] = {{"width", rs.width},         {"height", rs.height}, {"step", rs.step},
                  {"technique", rs.technique}, {"params", params},    {"ert_threshold", rs.ert_threshold},

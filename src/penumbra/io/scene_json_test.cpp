@@ -37,7 +37,8 @@ const char* kFull = R"({
   "material": {"albedo": 0.9, "phase_g": 0.3, "shading": "phong", "ambient": 0.05, "diffuse": 0.7, "specular": 0.1,
                "shininess": 30},
   "render": {"width": 64, "height": 48, "step": 0.25, "technique": "shadow-rays",
-             "params": {"shadow_cache": true, "cache_resolution": 0.25}, "ert_threshold": 0.95, "jitter": true},
+             "params": {"shadow_cache": true, "cache_resolution": 0.25, "pathtrace": {"mode": "single", "spp": 64}},
+             "ert_threshold": 0.95, "jitter": true},
   "planes": [{"point": [0, 0, -10], "normal": [0, 0, 3], "color": [0.5, 0.5, 0.5]}],
   "clip_planes": [[0, 0, 2, 1]],
   "background": [0.1, 0.2, 0.3]
@@ -66,6 +67,9 @@ TEST(SceneJson, ReadsEveryKey) {
   EXPECT_EQ(s.render().width, 64);
   EXPECT_TRUE(s.render().jitter);
   EXPECT_EQ(std::get<bool>(s.render().params.at("shadow_cache")), true);
+  // A technique's object becomes "technique.name" keys.
+  EXPECT_EQ(std::get<std::string>(s.render().params.at("pathtrace.mode")), "single");
+  EXPECT_EQ(std::get<double>(s.render().params.at("pathtrace.spp")), 64.0);
   EXPECT_FLOAT_EQ(s.planes()[0].normal.z, 1.0f);
   EXPECT_FLOAT_EQ(s.clip_planes()[0].w, 0.5f);
   EXPECT_EQ(s.background(), vec3(0.1f, 0.2f, 0.3f));
@@ -121,6 +125,12 @@ TEST(SceneJson, ErrorsNameTheKey) {
             "lights[1].colour");
   EXPECT_EQ(error_key(R"({"volume": {"builtin": "spheres"}, "render": {"width": "wide"}})"), "render.width");
   EXPECT_EQ(error_key(R"({"volume": {"builtin": "spheres"}, "render": {"width": 0}})"), "render.width");
+  EXPECT_EQ(error_key(R"({"volume": {"builtin": "spheres"}, "render": {"params": {"cssm.k": 3}}})"),
+            "render.params.cssm.k");
+  EXPECT_EQ(error_key(R"({"volume": {"builtin": "spheres"}, "render": {"params": {"cssm": {"k": {"x": 1}}}}})"),
+            "render.params.cssm.k");
+  EXPECT_EQ(error_key(R"({"volume": {"builtin": "spheres"}, "render": {"params": {"cssm": {"k": [1]}}}})"),
+            "render.params.cssm.k");
   EXPECT_EQ(error_key(R"({"volume": {"builtin": "spheres"}, "camera": {"fov_deg": 200}})"), "camera.fov_deg");
   EXPECT_EQ(error_key(R"({"volume": {"builtin": "spheres"}, "lights": [{"type": "point"}]})"), "lights[0].position");
   EXPECT_EQ(error_key(R"({"volume": {"builtin": "spheres"}, "lights": [{"type": "laser"}]})"), "lights[0].type");

@@ -128,10 +128,26 @@ void ParameterValues::set(std::string_view name, const ParameterValue& value) {
   values_[i] = table_.specs()[i].validate(value);
 }
 
-void ParameterValues::apply(const ParameterSettings& settings, bool strict) {
-  for (const auto& [name, value] : settings) {
-    if (!strict && !table_.find(name)) continue;
-    set(name, value);
+void ParameterValues::apply(const ParameterSettings& settings, bool strict, std::string_view technique) {
+  for (const auto& [key, value] : settings) {
+    std::string_view name = key;
+    bool targeted = false;
+    if (const auto dot = name.find('.'); dot != std::string_view::npos) {
+      if (name.substr(0, dot) != technique) continue;  // another technique's
+      name = name.substr(dot + 1);
+      targeted = true;
+    }
+    if (targeted || strict) {
+      set(name, value);  // throws naming the parameter
+      continue;
+    }
+    if (!table_.find(name)) continue;
+    // A flat name meant for another technique that shares the name but not
+    // the values (pathtrace's and occlusion-map's "mode").
+    try {
+      set(name, value);
+    } catch (const InvalidArgument&) {
+    }
   }
 }
 

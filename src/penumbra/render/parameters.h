@@ -61,9 +61,12 @@ class ParameterValues {
   // Sets a declared parameter after validation; throws InvalidArgument for an
   // unknown name (listing the known ones) or a bad value.
   void set(std::string_view name, const ParameterValue& value);
-  // Applies settings. With `strict`, names the table does not declare are an
-  // error; otherwise they are skipped (settings written for another technique).
-  void apply(const ParameterSettings& settings, bool strict);
+  // Applies settings. "technique.name" keys (scene JSON's per-technique
+  // objects in render.params) apply only when the prefix is `technique`, and
+  // then strictly. With `strict`, flat names the table does not declare or
+  // whose value it refuses are an error; otherwise they are skipped
+  // (settings written for another technique).
+  void apply(const ParameterSettings& settings, bool strict, std::string_view technique = {});
 
   double number(std::string_view name) const;
   int integer(std::string_view name) const;

@@ -56,6 +56,36 @@ TEST(Parameters, UnknownNamesAreErrorsThatNameTheParameter) {
   EXPECT_THROW(v.apply({{"other_technique_param", 1.0}}, true), InvalidArgument);
 }
 
+// Scene JSON's per-technique objects arrive as "technique.name" keys; a flat
+// name another technique shares with different values (pathtrace's and
+// occlusion-map's "mode") is skipped by the one that refuses it unless it is
+// the scene's own technique.
+TEST(Parameters, PerTechniqueKeysAndSharedFlatNames) {
+  ParameterSettings settings;
+  settings["kernel"] = std::string("tent");        // another technique's choice of the same name
+  settings["shadow-map.nodes"] = 12.0;            // another technique's
+  settings["filtered-sat.filter_voxels"] = 4.0;  // this one's
+  settings["cache"] = true;
+  ParameterValues v(table());
+  v.apply(settings, false, "filtered-sat");
+  EXPECT_EQ(v.choice("kernel"), "box");
+  EXPECT_EQ(v.integer("nodes"), 3);
+  EXPECT_EQ(v.number("filter_voxels"), 4.0);
+  EXPECT_TRUE(v.flag("cache"));
+  // As the scene's own technique, a refused value is an error naming it.
+  try {
+    ParameterValues(table()).apply(settings, true, "filtered-sat");
+    FAIL() << "'tent' was accepted";
+  } catch (const InvalidArgument& e) {
+    EXPECT_EQ(e.name(), "kernel");
+  }
+  // A per-technique key is strict: an undeclared name is an error.
+  ParameterSettings typo;
+  typo["filtered-sat.filter_voxel"] = 4.0;
+  EXPECT_THROW(ParameterValues(table()).apply(typo, false, "filtered-sat"), InvalidArgument);
+  EXPECT_NO_THROW(ParameterValues(table()).apply(typo, false, "cssm"));
+}
+
 TEST(Parameters, RejectsWrongTypesFromScenes) {
   ParameterValues v(table());
   EXPECT_THROW(v.set("filter_voxels", std::string("wide")), InvalidArgument);

@@ -77,4 +77,17 @@ const TechniqueInfo& find_technique(std::string_view name) {
   throw InvalidArgument("technique", fmt::format("unknown technique '{}' (known: {})", name, fmt::join(names, ", ")));
 }
 
+void check_technique_prefixes(const ParameterSettings& settings) {
+  for (const auto& entry : settings) {
+    const auto dot = entry.first.find('.');
+    if (dot == std::string::npos) continue;
+    const std::string prefix = entry.first.substr(0, dot);
+    try {
+      find_technique(prefix);
+    } catch (const InvalidArgument& e) {
+      throw InvalidScene("render.params." + prefix, e.what());
+    }
+  }
+}
+
 }  // namespace penumbra

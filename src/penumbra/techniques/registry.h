@@ -14,4 +14,8 @@ const std::vector<TechniqueInfo>& technique_registry();
 // Throws InvalidArgument("technique", ...) listing the known names.
 const TechniqueInfo& find_technique(std::string_view name);
 
+// Throws InvalidScene("render.params.<prefix>") for a "technique.name" key
+// whose prefix names no technique (a per-technique object in scene JSON).
+void check_technique_prefixes(const ParameterSettings& settings);
+
 }  // namespace penumbra
