@@ -49,6 +49,14 @@ Rendered render_ipsvi(const Scene& scene, IpsviSettings settings = {}) {
 
 double mean_de(const Image& a, const Image& b) { return delta_e_stats(a, b).mean; }
 
+// Light-segment samples (at the viewing-ray samples and at the cache writes)
+// per viewing-ray sample: what the sweep saves over shadow rays. A sweep in
+// the wrong order, or a pixel swept in the wrong zone, finds its cache texels
+// unwritten or ahead of it and marches far longer segments.
+double light_work(const IpsviFrameCounts& c) {
+  return double(c.light_samples + c.write_samples) / double(std::max<std::uint64_t>(c.view_samples, 1));
+}
+
 TEST(Ipsvi, AlbedoZeroMatchesShadowRaysOnTheSpheres) {
   const Scene scene = with_floor(lit_spheres());
   const Image reference = render_with(scene, "shadow-rays");
@@ -126,6 +134,23 @@ TEST(Ipsvi, EarlyTerminationKeepsTheImageWithFewerSamples) {
   EXPECT_LT(de.mean, 0.05);
   EXPECT_LT(early.counts.view_samples, full.counts.view_samples / 2);
   EXPECT_LT(with, without * 2 / 3);
+  // With piecewise integration the cache stays right whatever the rays
+  // sample (an unwritten texel marches to the box), so a plain early
+  // termination would keep the image too, at the price of long light
+  // segments. Without it the cache holds only what the rays wrote: the
+  // extension must keep the rays that carry hidden casters' shadows.
+  IpsviSettings no_pi;
+  no_pi.piecewise_integration = false;
+  const Rendered full_no_pi = render_ipsvi(scene, no_pi);
+  no_pi.early_termination = true;
+  const Rendered early_no_pi = render_ipsvi(scene, no_pi);
+  const DeltaEStats de_no_pi = delta_e_stats(early_no_pi.image, full_no_pi.image);
+  auto segments = [](const IpsviFrameCounts& c) { return double(c.light_samples + c.write_samples); };
+  std::printf("ERT without PI: mean dE %.4f, p99 %.3f; light samples with PI %.0f -> %.0f\n", de_no_pi.mean,
+              de_no_pi.p99, segments(full.counts), segments(early.counts));
+  EXPECT_LT(de_no_pi.mean, 0.05);
+  EXPECT_LT(de_no_pi.p99, 1.0);
+  EXPECT_LT(segments(early.counts), 0.9 * segments(full.counts)) << "stopped rays must not leave long light segments";
 }
 
 // Fig. 5: what a ray's opaque front hides may shadow what other rays see.
@@ -179,7 +204,10 @@ TEST(Ipsvi, PointLightZonesBlendWithoutSeams) {
   light.intensity = 5000.0f;
   scene.set_lights({light});
   const Image reference = render_with(scene, "shadow-rays");
-  const Image ipsvi = render_with(scene, "ipsvi");
+  const Rendered rendered = render_ipsvi(scene);
+  const Image& ipsvi = rendered.image;
+  std::printf("zones: light work %.2f\n", light_work(rendered.counts));
+  EXPECT_LT(light_work(rendered.counts), 10.0);  // measured 6.8
   save_test_image(reference, "ipsvi-point-shadow-rays.png");
   save_test_image(ipsvi, "ipsvi-point.png");
   const ImageLight il = project_light(scene.camera().view(), 64, 64, light);
@@ -225,18 +253,24 @@ TEST(Ipsvi, PointLightZonesBlendWithoutSeams) {
 TEST(Ipsvi, PointLightsInFrontBehindAndInsideMatchShadowRays) {
   Scene scene = lit_spheres();
   const vec3 eye = scene.camera().eye;  // on -y, looking along +y
-  for (const vec3& position : {vec3(0.4f, 0.45f, 0.1f) * eye, vec3(5.0f, 60.0f, 8.0f), vec3(2.0f, -3.0f, 4.0f),
-                              scene.volume().world_box().center()}) {
+  struct Case {
+    vec3 position;
+    double max_de, max_work;  // about 3x the measured dE, 1.5x the measured work
+  };
+  for (const Case& c : {Case{vec3(0.4f, 0.45f, 0.1f) * eye, 0.04, 3.6}, Case{vec3(5.0f, 60.0f, 8.0f), 0.12, 11.0},
+                        Case{vec3(2.0f, -3.0f, 4.0f), 0.03, 25.0}, Case{scene.volume().world_box().center(), 0.03, 25.0}}) {
     Light light;
     light.type = LightType::Point;
-    light.position = position;
-    light.intensity = 200.0f + glm::dot(position, position);
+    light.position = c.position;
+    light.intensity = 200.0f + glm::dot(c.position, c.position);
     scene.set_lights({light});
-    const Image image = render_with(scene, "ipsvi");
-    for (const vec4& p : image.pixels()) ASSERT_TRUE(std::isfinite(p.r) && std::isfinite(p.g) && std::isfinite(p.b));
-    const double de = mean_de(image, render_with(scene, "shadow-rays"));
-    std::printf("point light at (%.0f, %.0f, %.0f): mean dE %.3f\n", position.x, position.y, position.z, de);
-    EXPECT_LT(de, 0.5);
+    const Rendered r = render_ipsvi(scene);
+    for (const vec4& p : r.image.pixels()) ASSERT_TRUE(std::isfinite(p.r) && std::isfinite(p.g) && std::isfinite(p.b));
+    const double de = mean_de(r.image, render_with(scene, "shadow-rays"));
+    std::printf("point light at (%.0f, %.0f, %.0f): mean dE %.3f, light work %.2f\n", c.position.x, c.position.y,
+                c.position.z, de, light_work(r.counts));
+    EXPECT_LT(de, c.max_de);
+    EXPECT_LT(light_work(r.counts), c.max_work);
   }
 }
 
@@ -357,8 +391,11 @@ TEST(Ipsvi, ShadowTransferFunctionClipPlanesAndPhongAsShadowRays) {
   Material m = scene.material();
   m.shading = Shading::Phong;
   scene.set_material(m);
-  const Image image = render_with(scene, "ipsvi");
+  const Rendered r = render_ipsvi(scene);
+  const Image& image = r.image;
   const double de = mean_de(image, render_with(scene, "shadow-rays"));
+  std::printf("shadow TF + clip plane: light work %.2f\n", light_work(r.counts));
+  EXPECT_LT(light_work(r.counts), 4.5);  // measured 3.0
   Scene same_tf = scene;
   same_tf.set_shadow_transfer_function(std::nullopt);
   const double shadow_tf_effect = mean_de(image, render_with(same_tf, "ipsvi"));
