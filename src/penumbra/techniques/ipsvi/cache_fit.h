@@ -12,14 +12,14 @@
 // reading it marches the light segment all the way to the box (piecewise
 // integration).
 //
-// Texel size: a pixel's footprint at the region's centroid across the light
-// (what the image resolves), longer by up to LightCacheRegion::max_aspect
-// along the light-space image of the viewing direction. There the fitted
-// rectangle is as long as the frustum runs deep into the volume (zoomed in
-// on a volume lit from the side: a strip one image wide and a box deep), and
-// the image shows depth only through surfaces seen at a slant, which the
-// image foreshortens by about as much. The cache thus stays about as many
-// texels as the image has pixels whatever the zoom.
+// Texel size: a pixel's footprint at the region's centroid across the light,
+// longer by up to LightCacheRegion::max_aspect (4) along the light-space image
+// of the viewing direction, and the size capped (sweep_renderer.h). Zoomed in
+// on a volume lit from the side the fitted rectangle is a strip one image wide
+// and as long as the frustum runs deep into the box; texels a pixel square
+// would need the strip's length in pixels along it. The long texels cost
+// detail on surfaces seen at a slant, where the shadow varies along the view:
+// a trade of memory against error measured in docs/ipsvi.md.
 #include "penumbra/base/math.h"
 #include "penumbra/scene/camera.h"
 #include "penumbra/scene/plane.h"

@@ -1,7 +1,7 @@
 // The cache fitted to the camera (section 5.2): everything the camera sees of
 // the box, and every visible floor point whose light ray crosses the box,
-// lands inside the cache; zooming in keeps the cache within twice the
-// image's side, and its texels about a pixel wide across the light.
+// lands inside the cache; zooming in keeps the cache's size bounded, and its
+// texels about a pixel wide across the light.
 #include "penumbra/techniques/ipsvi/cache_fit.h"
 
 #include <gtest/gtest.h>

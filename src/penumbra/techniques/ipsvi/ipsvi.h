@@ -15,7 +15,8 @@
 //   line_width             image lines per synchronised block (4.2, 5.2)
 //   cache_size             illumination cache texels per side (4.3, 5.2); 0: a
 //                          texel about a pixel wide at the visible part of the
-//                          volume, at most twice the image's longer side
+//                          volume, at most three times the image's longer
+//                          side
 //                          (Fig. 9: the size matters; texels finer than the
 //                          rays of a line leave holes that cost longer light
 //                          segments). Either way the cache spans only what the

@@ -119,7 +119,7 @@ struct LightCacheRegion {
   vec3 centroid{0.0f};             // their centre
   std::vector<vec3> plane_points;  // corners of the visible parts of planes (their light rays cross the box)
   vec3 long_direction{0.0f};       // texels may be longer along this direction's light-space image
-  float max_aspect = 8.0f;         // at most this much longer
+  float max_aspect = 4.0f;         // at most this much longer
   float pixel = 0.0f;              // world size of a pixel at the centroid (sizes the cache when size is 0)
 };
 
