@@ -36,7 +36,9 @@ print(json.dumps(s))
 PY
   row="| $fov |"
   for t in $techniques; do
-    line=$("$bin" bench "$zoomed" --technique "$t" --size "${size}x${size}" --frames "$frames" | tail -n 1)
+    extra=()
+    [ "$t" = shadow-rays ] && extra=(--param shadow_cache=false)  # exact shadow rays
+    line=$("$bin" bench "$zoomed" --technique "$t" "${extra[@]}" --size "${size}x${size}" --frames "$frames" | tail -n 1)
     ms=$(echo "$line" | python3 -c 'import json,sys; r=json.load(sys.stdin); print("%.1f | %.2f" % (r["frame_ms_median"], r["aux_bytes"] / 1e6))')
     row="$row $ms |"
   done
