@@ -19,6 +19,7 @@ class HalfAngle final : public Technique {
   void render(const Scene& scene, Image& image, RenderStats* stats) override { renderer_.render(scene, image, stats); }
 
   std::uint64_t aux_bytes() const override { return renderer_.aux_bytes(); }
+  std::uint64_t rebuilds() const override { return renderer_.rebuilds(); }
 
  private:
   HalfAngleRenderer renderer_;

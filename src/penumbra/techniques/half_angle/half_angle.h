@@ -21,9 +21,13 @@
 //                   texel per pixel at the volume where that is finer, as
 //                   when the camera zooms in)
 // Passes
-//   prepare: nothing beyond the shared resources: the slicing depends on the
-//            camera, so every light-space structure is per frame
-//   render:  per light, one sweep over the slices (half_angle_renderer.h)
+//   prepare: checks light_buffer_size; per light, the light buffer's
+//            projection over the box and each texel's light ray (rebuilt
+//            when the lights, the data or the buffer size change, not for a
+//            camera move or a TF change: the slicing axis, which follows the
+//            camera, enters as two dot products per texel and slice)
+//   render:  per light, one sweep over the slices (half_angle_renderer.h);
+//            the diffuse blur covers every texel the light has reached
 //
 // A CPU implementation of a GPU method: the "textured slices" are the slice
 // planes sampled where each viewing ray (eye buffer) and each light-buffer

@@ -5,7 +5,6 @@
 #include "penumbra/base/parallel.h"
 #include "penumbra/render/render_lit.h"
 #include "penumbra/techniques/half_angle/half_angle_kernels.h"
-#include "penumbra/techniques/ipsvi/sweep_renderer.h"
 
 #include <algorithm>
 #include <atomic>
@@ -61,43 +60,112 @@ Rect light_rect(const LightCacheProjection& p, const vec3* points, int count) {
               int(std::clamp(std::ceil(hi.x) + 1.0f, 0.0f, n)), int(std::clamp(std::ceil(hi.y) + 1.0f, 0.0f, n))};
 }
 
-// Gaussian blur of the diffuse channels (y, z, w) over a rectangle, variance
-// `variance` texels^2 per axis, by passes of the binomial [w, 1 - 2w, w].
-void blur_diffuse(std::vector<vec4>& buffer, std::vector<vec4>& scratch, int n, const Rect& r, float variance) {
-  if (!(variance > 1e-4f) || r.x1 <= r.x0 || r.y1 <= r.y0) return;
-  const int passes = int(std::ceil(variance / 0.5f));
-  const float w = variance / (2.0f * float(passes));
-  auto pass = [&](bool along_x) {
-    parallel_for(r.y0, r.y1, [&](std::int64_t first, std::int64_t last) {
-      for (std::int64_t y = first; y < last; ++y) {
-        for (int x = r.x0; x < r.x1; ++x) {
-          const int i = x + n * int(y);
-          const int prev = along_x ? (x > 0 ? i - 1 : i) : (y > 0 ? i - n : i);
-          const int next = along_x ? (x + 1 < n ? i + 1 : i) : (y + 1 < n ? i + n : i);
-          vec4 v = buffer[i];
-          const vec3 mid(v.y, v.z, v.w);
-          const vec3 a(buffer[prev].y, buffer[prev].z, buffer[prev].w);
-          const vec3 b(buffer[next].y, buffer[next].z, buffer[next].w);
-          const vec3 out = (1.0f - 2.0f * w) * mid + w * (a + b);
-          scratch[i] = vec4(v.x, out);
-        }
+// Gaussian blur of the diffuse channels (y, z, w), variance `variance`
+// texels^2 along x and y, by passes of the binomial [w, 1 - 2w, w] (edges
+// clamped), over the rectangle `r` of texels that are not yet the unlit 1:
+// the same as blurring the whole n x n buffer. (Blurring only the current
+// slice's rectangle, as before, stopped light that had left the slice's
+// footprint from spreading.) `r` grows by a texel per pass.
+void blur_diffuse(std::vector<vec4>& buffer, std::vector<vec4>& scratch, int n, Rect& r, vec2 variance) {
+  auto blur_axis = [&](bool along_x, float v) {
+    if (!(v > 1e-4f)) return;
+    const int passes = int(std::ceil(v / 0.5f));
+    const float w = v / (2.0f * float(passes));
+    for (int pass = 0; pass < passes; ++pass) {
+      if (along_x) {
+        r.x0 = std::max(r.x0 - 1, 0);
+        r.x1 = std::min(r.x1 + 1, n);
+      } else {
+        r.y0 = std::max(r.y0 - 1, 0);
+        r.y1 = std::min(r.y1 + 1, n);
       }
-    });
-    for (int y = r.y0; y < r.y1; ++y) {
-      std::copy(scratch.begin() + (r.x0 + n * y), scratch.begin() + (r.x1 + n * y), buffer.begin() + (r.x0 + n * y));
+      parallel_for(r.y0, r.y1, [&](std::int64_t first, std::int64_t last) {
+        for (std::int64_t y = first; y < last; ++y) {
+          for (int x = r.x0; x < r.x1; ++x) {
+            const int i = x + n * int(y);
+            const int prev = along_x ? (x > 0 ? i - 1 : i) : (y > 0 ? i - n : i);
+            const int next = along_x ? (x + 1 < n ? i + 1 : i) : (y + 1 < n ? i + n : i);
+            const vec4 c = buffer[std::size_t(i)], a = buffer[std::size_t(prev)], b = buffer[std::size_t(next)];
+            const vec3 out = (1.0f - 2.0f * w) * vec3(c.y, c.z, c.w) + w * (vec3(a.y, a.z, a.w) + vec3(b.y, b.z, b.w));
+            scratch[std::size_t(i)] = vec4(c.x, out);
+          }
+        }
+      });
+      for (int y = r.y0; y < r.y1; ++y) {
+        std::copy(scratch.begin() + (r.x0 + n * y), scratch.begin() + (r.x1 + n * y), buffer.begin() + (r.x0 + n * y));
+      }
     }
   };
-  for (int i = 0; i < passes; ++i) {
-    pass(true);
-    pass(false);
+  if (r.x1 <= r.x0 || r.y1 <= r.y0) return;
+  blur_axis(true, variance.x);
+  blur_axis(false, variance.y);
+}
+
+// The automatic light buffer size: Kniss et al.'s (the eye buffer's larger
+// side), or a texel about a pixel wide at the volume's centre when that is
+// finer: once the camera zooms in, a light buffer over the whole box at the
+// image's size has texels several pixels wide and grazing light on thin
+// surfaces bands (engine CT zoomed to a third at 160^2: mean dE 1.86 ->
+// 0.81). For a light inside the box, at the box's half-diagonal.
+int automatic_buffer_size(const Scene& scene) {
+  const Box3 box = scene.volume().world_box();
+  const Camera& camera = scene.camera();
+  const RenderSettings& r = scene.render();
+  const float height = camera.projection == Projection::Orthographic
+                           ? camera.ortho_height
+                           : 2.0f * std::tan(0.5f * glm::radians(camera.fov_deg)) * glm::length(box.center() - camera.eye);
+  const float pixel = std::max(height / float(r.height), 1e-6f);
+  float extent = 0.0f;
+  for (const Light& light : scene.lights()) {
+    if (light.type == LightType::Environment) continue;
+    const LightCacheProjection p = make_light_cache_projection(light, box, 1);
+    const float reach = p.mapping == LightMapping::Octahedral ? 0.5f * glm::length(box.extent()) : 0.0f;
+    const float depth = light.at_infinity() ? 0.0f : glm::max(glm::length(box.center() - light.position), reach);
+    extent = std::max(extent, p.texel_world_size(depth).x);
   }
+  return std::clamp(std::max(int(std::ceil(extent / pixel)), std::max(r.width, r.height)), 16, 4096);
 }
 
 }  // namespace
 
 void HalfAngleRenderer::prepare(const Scene& scene, const HalfAngleSettings& settings) {
+  if (settings.light_buffer_size != 0 && (settings.light_buffer_size < 16 || settings.light_buffer_size > 4096)) {
+    throw InvalidArgument("light_buffer_size", "must be 0 (automatic) or in [16, 4096]");
+  }
   resources_.update(scene, scene.material().shading == Shading::Phong);
   settings_ = settings;
+  const int n = settings.light_buffer_size > 0 ? settings.light_buffer_size : automatic_buffer_size(scene);
+  const SceneVersions& v = scene.versions();
+  if (built_ && n == size_ && v.lights == lights_version_ && v.data == data_version_) return;
+  // The light buffer's projection and each texel's light ray, per light: they
+  // depend on the light, the box and the buffer size, not on the camera (the
+  // slicing axis enters the slice loop as two dot products per texel).
+  const Box3 box = scene.volume().world_box();
+  const std::size_t texels = std::size_t(n) * std::size_t(n);
+  std::size_t lights = 0;
+  for (const Light& light : scene.lights()) lights += light.type != LightType::Environment;
+  check_memory_budget("half-angle light rays", checked_product({texels, sizeof(Ray), std::uint64_t(lights)}));
+  lights_.clear();
+  for (const Light& light : scene.lights()) {
+    if (light.type == LightType::Environment) continue;
+    LightRays lr;
+    lr.projection = make_light_cache_projection(light, box, n);
+    lr.rays.resize(texels);
+    parallel_for(0, n, [&](std::int64_t first, std::int64_t last) {
+      for (std::int64_t y = first; y < last; ++y) {
+        for (int x = 0; x < n; ++x) {
+          lr.rays[std::size_t(x) + std::size_t(n) * std::size_t(y)] =
+              lr.projection.texel_ray(vec2(float(x) + 0.5f, float(y) + 0.5f));
+        }
+      }
+    });
+    lights_.push_back(std::move(lr));
+  }
+  size_ = n;
+  lights_version_ = v.lights;
+  data_version_ = v.data;
+  built_ = true;
+  ++rebuilds_;
 }
 
 void HalfAngleRenderer::render(const Scene& scene, Image& image, RenderStats* stats) {
@@ -113,26 +181,16 @@ void HalfAngleRenderer::render(const Scene& scene, Image& image, RenderStats* st
   }
   const int width = view.width, height = view.height;
   if (image.width() != width || image.height() != height) image = Image(width, height);
-  if (settings_.light_buffer_size != 0 && settings_.light_buffer_size < 16) {
-    throw InvalidArgument("light_buffer_size", "must be 0 (automatic) or in [16, 4096]");
-  }
-  // Automatic size: Kniss et al.'s (the eye buffer's larger side), or ipsvi's
-  // rule (a texel about a pixel wide at the volume) when that is finer: once
-  // the camera zooms in, a light buffer over the whole box at the image's
-  // size has texels several pixels wide and grazing light on thin surfaces
-  // bands (engine CT zoomed to a third at 160^2: mean dE 1.86 -> 0.81).
-  const int n = settings_.light_buffer_size > 0
-                    ? settings_.light_buffer_size
-                    : std::max(std::clamp(std::max(width, height), 16, 4096), ipsvi_cache_size(scene, IpsviSettings{}));
+  const int n = size_;
   const std::size_t pixels = std::size_t(width) * std::size_t(height);
   const std::size_t texels = std::size_t(n) * std::size_t(n);
   check_memory_budget("half-angle buffers",
-                      checked_product({texels, 2 * sizeof(vec4) + sizeof(SlicedRay)}) +
+                      checked_product({texels, 2 * sizeof(vec4)}) +
                           checked_product({pixels, sizeof(vec4) + sizeof(SlicedRay) + sizeof(EyePixel) + 8}));
   light_.resize(texels);
   blur_.resize(texels);
   sums_.assign(pixels, vec4(0.0f));
-  std::vector<SlicedRay> eye(pixels), light_rays(texels);
+  std::vector<SlicedRay> eye(pixels);
   std::vector<int> eye_plane(pixels, -1);
   parallel_for(0, height, [&](std::int64_t first, std::int64_t last) {
     for (std::int64_t y = first; y < last; ++y) {
@@ -167,22 +225,14 @@ void HalfAngleRenderer::render(const Scene& scene, Image& image, RenderStats* st
     kernel.shadow = &lit_shadow;
     kernel.separate_shadow_tf = scene.shadow_transfer_function().has_value();
     kernel.slices = make_slice_setup(view.camera, light, view.box, settings_.slices, view.step);
-    kernel.projection = make_light_cache_projection(light, view.box, n);
+    const std::vector<Ray>& light_rays = lights_[li].rays;
+    kernel.projection = lights_[li].projection;
     kernel.light = light_.data();
     kernel.scattering = scattering;
     const SliceSetup& slices = kernel.slices;
     last_slices_ = slices.count;
     const vec3 s = slices.axis;
     std::fill(light_.begin(), light_.end(), vec4(1.0f));
-    parallel_for(0, n, [&](std::int64_t first, std::int64_t last) {
-      for (std::int64_t y = first; y < last; ++y) {
-        for (int x = 0; x < n; ++x) {
-          const Ray r = kernel.projection.texel_ray(vec2(float(x) + 0.5f, float(y) + 0.5f));
-          light_rays[std::size_t(x) + std::size_t(n) * std::size_t(y)] =
-              SlicedRay{r.origin, r.direction, glm::dot(s, r.origin), glm::dot(s, r.direction), kInfinity};
-        }
-      }
-    });
     // Eye pixels, and the slice before which each plane hit is shaded (the
     // number of slices lying before it along s), bucketed.
     bucket_start.assign(std::size_t(slices.count) + 2, 0);
@@ -229,12 +279,14 @@ void HalfAngleRenderer::render(const Scene& scene, Image& image, RenderStats* st
     };
     // Diffuse spread per slice, in light-buffer texels^2.
     const float light_step = slices.spacing / glm::max(glm::dot(s, slices.light_travel), 1e-3f);
-    const float texel = kernel.projection.texel_world_size(
+    const vec2 texel = kernel.projection.texel_world_size(
         light.at_infinity() ? 0.0f : glm::length(view.box.center() - light.position));
-    const float variance = scattering.has_diffuse() ? light_step * scattering.spread_per_length / (texel * texel) : 0.0f;
+    const vec2 variance =
+        scattering.has_diffuse() ? light_step * scattering.spread_per_length / (texel * texel) : vec2(0.0f);
 
     with_sampler(view.volume, [&](const auto& sampler) {
       vec3 polygon[12];
+      Rect lit_area{n, n, 0, 0};  // texels some slice has attenuated, and where the blur spread them
       for (int k = 0; k < slices.count; ++k) {
         shade_planes(k);
         const int corners = slice_polygon(view.box, s, slices.position(k), polygon);
@@ -255,12 +307,18 @@ void HalfAngleRenderer::render(const Scene& scene, Image& image, RenderStats* st
           for (std::int64_t y = first; y < last; ++y) {
             for (int x = lr.x0; x < lr.x1; ++x) {
               const std::size_t i = std::size_t(x) + std::size_t(n) * std::size_t(y);
-              light_slice_sample(kernel, sampler, light_rays[i], k, light_[i], count);
+              const Ray& r = light_rays[i];
+              const SlicedRay ray{r.origin, r.direction, glm::dot(s, r.origin), glm::dot(s, r.direction), kInfinity};
+              light_slice_sample(kernel, sampler, ray, k, light_[i], count);
             }
           }
           samples.fetch_add(count, std::memory_order_relaxed);
         });
-        blur_diffuse(light_, blur_, n, lr, variance);
+        if (lr.x0 < lr.x1 && lr.y0 < lr.y1) {
+          lit_area = Rect{std::min(lit_area.x0, lr.x0), std::min(lit_area.y0, lr.y0), std::max(lit_area.x1, lr.x1),
+                          std::max(lit_area.y1, lr.y1)};
+        }
+        if (scattering.has_diffuse()) blur_diffuse(light_, blur_, n, lit_area, variance);
       }
       shade_planes(slices.count);
       return 0;
@@ -285,7 +343,9 @@ void HalfAngleRenderer::render(const Scene& scene, Image& image, RenderStats* st
 }
 
 std::uint64_t HalfAngleRenderer::aux_bytes() const {
-  return (light_.size() + blur_.size()) * sizeof(vec4) + light_.size() * sizeof(SlicedRay);
+  std::uint64_t bytes = (light_.size() + blur_.size()) * sizeof(vec4);
+  for (const LightRays& lr : lights_) bytes += lr.rays.size() * sizeof(Ray);
+  return bytes;
 }
 
 }  // namespace penumbra

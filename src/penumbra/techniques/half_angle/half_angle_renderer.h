@@ -11,6 +11,7 @@
 #include "penumbra/render/render_loop.h"
 #include "penumbra/render/scene_resources.h"
 #include "penumbra/scene/scene.h"
+#include "penumbra/techniques/ipsvi/light_cache_projection.h"
 
 #include <cstdint>
 #include <vector>
@@ -21,7 +22,7 @@ struct HalfAngleSettings {
   int slices = 0;  // 0: one slab per ray step along the central viewing ray
   float cone_angle_deg = 20.0f;
   float albedo = 0.0f;
-  int light_buffer_size = 0;  // texels per side; 0: max(image side, ipsvi_cache_size)
+  int light_buffer_size = 0;  // texels per side; 0: max(image side, a texel per pixel at the volume)
 };
 
 class HalfAngleRenderer {
@@ -30,10 +31,22 @@ class HalfAngleRenderer {
   void render(const Scene& scene, Image& image, RenderStats* stats = nullptr);
   std::uint64_t aux_bytes() const;
   int last_slice_count() const { return last_slices_; }
+  // How many times prepare() has built the light rays (light, data or buffer
+  // size changed).
+  std::uint64_t rebuilds() const { return rebuilds_; }
 
  private:
+  struct LightRays {
+    LightCacheProjection projection;
+    std::vector<Ray> rays;  // per texel: the light ray through its centre
+  };
+
   SceneResources resources_;
   HalfAngleSettings settings_;
+  std::vector<LightRays> lights_;
+  int size_ = 0;
+  std::uint64_t lights_version_ = 0, data_version_ = 0, rebuilds_ = 0;
+  bool built_ = false;
   std::vector<vec4> light_, blur_;
   std::vector<vec4> sums_;
   int last_slices_ = 0;

@@ -7,6 +7,7 @@
 // about one voxel; the differences to shadow-rays are resampling at shadow
 // edges: a few dE there, well under 1 on average.
 #include "penumbra/analysis/image_metrics.h"
+#include "penumbra/base/error.h"
 #include "penumbra/io/scene_json.h"
 #include "penumbra/techniques/half_angle/slice_geometry.h"
 #include "penumbra/techniques/registry.h"
@@ -92,6 +93,42 @@ TEST(HalfAngle, ForwardScatteringReducesToSingleScatteringWithoutACone) {
   const Image single = render_with(scene, "half-angle");
   EXPECT_LT(mean_de(render_with(scene, "half-angle", {{"albedo", 0.8}, {"cone_angle_deg", 0.0}}), single), 0.05);
   EXPECT_GT(mean_de(render_with(scene, "half-angle", {{"albedo", 0.8}, {"cone_angle_deg", 30.0}}), single), 0.05);
+}
+
+// The light rays are built in prepare(), once per light, data or buffer size
+// change; a camera move or a TF change reuses them. A bad light_buffer_size
+// fails in prepare(), naming the parameter.
+TEST(HalfAngle, BuildsLightRaysOncePerLightAndChecksTheBufferSizeInPrepare) {
+  Scene scene = lit_spheres(24);
+  const TechniqueInfo& info = find_technique("half-angle");
+  ParameterValues params(info.parameters);
+  params.set("light_buffer_size", 32.0);
+  auto t = info.create();
+  t->prepare(scene, params);
+  EXPECT_EQ(t->rebuilds(), 1u);
+  EXPECT_GE(t->aux_bytes(), 32u * 32u * sizeof(Ray)) << "the kept rays are counted";
+  Camera camera = scene.camera();
+  camera.orbit(25.0f, 10.0f);
+  scene.set_camera(camera);
+  scene.set_transfer_function(testing::step_tf(0.3f, vec3(1.0f), 0.4f));
+  t->prepare(scene, params);
+  Image image;
+  t->render(scene, image);
+  t->prepare(scene, params);
+  EXPECT_EQ(t->rebuilds(), 1u) << "camera and TF need no new light rays";
+  scene.set_lights(scene.lights());
+  t->prepare(scene, params);
+  EXPECT_EQ(t->rebuilds(), 2u);
+  params.set("light_buffer_size", 48.0);
+  t->prepare(scene, params);
+  EXPECT_EQ(t->rebuilds(), 3u);
+  params.set("light_buffer_size", 8.0);  // in the table's range, not prepare's
+  try {
+    t->prepare(scene, params);
+    ADD_FAILURE() << "light_buffer_size 8 accepted";
+  } catch (const InvalidArgument& e) {
+    EXPECT_EQ(e.name(), "light_buffer_size");
+  }
 }
 
 // Fig. 8 of Sundén et al.: ipsvi and half-angle slicing look alike. Same

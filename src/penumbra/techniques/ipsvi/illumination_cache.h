@@ -90,16 +90,16 @@ struct IlluminationCacheView {
   }
 
   // Diffuse light filtered with a Gaussian of standard deviation `sigma`
-  // texels: five bilinear taps (centre and +-r along both axes) whose weights
-  // give the variance sigma^2 per axis.
-  PENUMBRA_HD vec3 read_diffuse(vec2 uv, float sigma) const {
+  // texels along each axis: five bilinear taps (centre and +-r along both
+  // axes) whose weights give the variance sigma^2 per axis.
+  PENUMBRA_HD vec3 read_diffuse(vec2 uv, vec2 sigma) const {
     if (!covers(uv)) return vec3(1.0f);
-    if (!(sigma > 0.05f)) return diffuse_at(uv);
-    const float r = glm::max(1.0f, sigma * 1.5811388f);  // keeps the centre weight >= 0.2
-    const float w = glm::min(sigma * sigma / (2.0f * r * r), 0.2f);
-    vec3 sum = (1.0f - 4.0f * w) * diffuse_at(uv);
-    sum += w * (diffuse_at(uv + vec2(r, 0.0f)) + diffuse_at(uv - vec2(r, 0.0f)) + diffuse_at(uv + vec2(0.0f, r)) +
-                diffuse_at(uv - vec2(0.0f, r)));
+    if (!(glm::max(sigma.x, sigma.y) > 0.05f)) return diffuse_at(uv);
+    const vec2 r = glm::max(vec2(1.0f), sigma * 1.5811388f);  // keeps the centre weight >= 0.2
+    const vec2 w = glm::min(sigma * sigma / (2.0f * r * r), vec2(0.2f));
+    vec3 sum = (1.0f - 2.0f * w.x - 2.0f * w.y) * diffuse_at(uv);
+    sum += w.x * (diffuse_at(uv + vec2(r.x, 0.0f)) + diffuse_at(uv - vec2(r.x, 0.0f)));
+    sum += w.y * (diffuse_at(uv + vec2(0.0f, r.y)) + diffuse_at(uv - vec2(0.0f, r.y)));
     return sum;
   }
 

@@ -40,7 +40,7 @@ TechniqueInfo ipsvi_info() {
                               "half-angle of the forward-scattering cone toward the light"),
           ParameterSpec::integer("line_width", 1, 1, 64, "image lines per synchronised block"),
           ParameterSpec::integer("cache_size", 0, 0, 4096,
-                                 "illumination cache texels per side (0 = about one texel per pixel; else >= 16)"),
+                                 "illumination cache texels per side over the visible part (0 = about one texel per pixel; else >= 16)"),
           ParameterSpec::flag("piecewise_integration", true,
                               "march light segments back to the previous cache plane (else one step per sample)"),
           ParameterSpec::flag("early_termination", false,

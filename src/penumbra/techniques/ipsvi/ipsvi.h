@@ -14,16 +14,22 @@
 //   cone_angle_deg         half-angle theta of that cone
 //   line_width             image lines per synchronised block (4.2, 5.2)
 //   cache_size             illumination cache texels per side (4.3, 5.2); 0: a
-//                          texel about a pixel wide at the volume (Fig. 9: the
-//                          size matters; texels finer than the rays of a line
-//                          leave holes that cost longer light segments)
+//                          texel about a pixel wide at the visible part of the
+//                          volume, at most three times the image's longer
+//                          side
+//                          (Fig. 9: the size matters; texels finer than the
+//                          rays of a line leave holes that cost longer light
+//                          segments). Either way the cache spans only what the
+//                          camera sees (cache_fit.h)
 //   piecewise_integration  march the light segment back to the previous cache
 //                          plane (4.4) instead of compositing one step
 //   early_termination      the ERT extension of 5.1
 // Passes
-//   prepare: per light, the cache projection fitted to the volume box and the
-//            cache's starting state (rebuilt when lights, data, clip planes or
-//            the cache size change; never for a camera move or a TF change)
+//   prepare: per light, the cache projection fitted to the camera frustum's
+//            intersection with the volume box (5.2, cache_fit.h) and the
+//            cache's starting state: refitted when the camera moves (ray-box
+//            tests per texel, no volume samples), rebuilt when lights, data,
+//            clip planes or cache_size change; never for a TF change
 //   render:  per light, [ERT pre-pass and sweep toward the light,] then the
 //            sweep of sweep_plan.h; rays of a block of lines in parallel,
 //            each marching the volume with the cache (ipsvi_ray.h)
@@ -37,7 +43,8 @@
 //   - point light in front of, behind or inside the volume: each ray is
 //     traversed away from the light (ipsvi_ray.h); with the light behind the
 //     camera plane the sweep runs inward, from the image border toward s'_l.
-//   - volume partly off screen: only visible lines are swept. With piecewise
+//   - volume partly off screen: only visible lines are swept, and the cache
+//     covers only the light rays through what is visible. With piecewise
 //     integration a cache texel no visible ray has written still holds
 //     "unlit at the box entry", so the first visible sample on its light ray
 //     marches all the way to the box and off-screen structures do shadow the

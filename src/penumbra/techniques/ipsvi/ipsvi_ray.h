@@ -169,7 +169,7 @@ PENUMBRA_HD CachedLight ipsvi_light_at(const IpsviKernel& k, const Sampler& samp
   for (int i = 0; i < n; ++i) out.direct += weights[i] * base_direct[i] * exp_nonpositive(-tau[i].direct);
   out.direct /= weight_sum;
   if (fs.has_diffuse()) {
-    const float spread = glm::sqrt(lengths[diffuse_slot] * fs.spread_per_length) / k.projection.texel_world_size(here);
+    const vec2 spread = glm::sqrt(lengths[diffuse_slot] * fs.spread_per_length) / k.projection.texel_world_size(here);
     const vec3 t = tau[diffuse_slot].diffuse;
     out.diffuse = k.cache.read_diffuse(uv, spread) *
                   vec3(exp_nonpositive(-t.r), exp_nonpositive(-t.g), exp_nonpositive(-t.b));

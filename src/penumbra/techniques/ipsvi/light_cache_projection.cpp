@@ -3,6 +3,7 @@
 #include "penumbra/base/error.h"
 
 #include <array>
+#include <cmath>
 
 namespace penumbra {
 namespace {
@@ -16,73 +17,166 @@ std::array<vec3, 8> box_corners(const Box3& box) {
   return corners;
 }
 
-// Two unit vectors completing `axis` to a right-handed frame.
-void complete_frame(vec3 axis, vec3& u, vec3& v) {
-  const vec3 helper = glm::abs(axis.x) < 0.9f ? vec3(1.0f, 0.0f, 0.0f) : vec3(0.0f, 1.0f, 0.0f);
-  u = glm::normalize(glm::cross(helper, axis));
+// Two unit vectors completing `axis` to a right-handed frame; u along the
+// part of `preferred` across the axis where there is enough of it.
+void complete_frame(vec3 axis, vec3 preferred, vec3& u, vec3& v) {
+  const vec3 across = preferred - glm::dot(preferred, axis) * axis;
+  if (glm::length(across) > 0.2f * glm::length(preferred) && glm::length(preferred) > 0.0f) {
+    u = glm::normalize(across);
+  } else {
+    const vec3 helper = glm::abs(axis.x) < 0.9f ? vec3(1.0f, 0.0f, 0.0f) : vec3(0.0f, 1.0f, 0.0f);
+    u = glm::normalize(glm::cross(helper, axis));
+  }
   v = glm::cross(axis, u);
 }
 
-// A little margin so that points on the box faces stay inside the outer texels.
-constexpr float kMargin = 1.02f;
+// A little margin (1% of the box's footprint on each side) so that points on
+// the region's faces stay inside the outer texels.
+constexpr float kMargin = 0.01f;
+
+// Texel sizes are rounded up to powers of 2^(1/4), and the rectangle's centre
+// to whole texels, so that small camera moves leave the grid where it was.
+float snap_up(float t) { return std::exp2(std::ceil(4.0f * std::log2(t)) / 4.0f); }
+
+struct Rect {
+  vec2 lo{kInfinity}, hi{-kInfinity};
+  void add(vec2 p) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  bool empty() const { return !(lo.x <= hi.x && lo.y <= hi.y); }
+};
 
 }  // namespace
 
 LightCacheProjection make_light_cache_projection(const Light& light, const Box3& box, int size) {
   if (size < 1) throw InvalidArgument("cache_size", "must be at least 1");
+  LightCacheRegion whole;
+  whole.max_aspect = 1.0f;
+  return fit_light_cache_projection(light, box, whole, size, size);
+}
+
+LightCacheProjection fit_light_cache_projection(const Light& light, const Box3& box, const LightCacheRegion& region,
+                                                int size, int max_size) {
+  if (size < 0) throw InvalidArgument("cache_size", "must be at least 1");
   LightCacheProjection p;
-  p.size = size;
   const auto corners = box_corners(box);
   const float diagonal = glm::max(glm::length(box.extent()), 1e-6f);
+  const int cap = glm::max(max_size, 16);
 
+  // The mapping and its axis depend on the light and the box only.
+  float lowest = kInfinity;  // orthographic: depth origin along the axis
   if (light.at_infinity()) {
     p.mapping = LightMapping::Orthographic;
     p.axis = glm::normalize(light.direction);
-    complete_frame(p.axis, p.side_u, p.side_v);
-    vec3 lo(kInfinity), hi(-kInfinity);
     for (const vec3& c : corners) {
-      const vec3 q(glm::dot(c, p.side_u), glm::dot(c, p.side_v), glm::dot(c, p.axis));
-      lo = glm::min(lo, q);
-      hi = glm::max(hi, q);
+      lowest = glm::min(lowest, glm::dot(c, p.axis));
+      p.max_depth = glm::max(p.max_depth, glm::dot(c, p.axis));
     }
-    const float extent = glm::max(glm::max(hi.x - lo.x, hi.y - lo.y), 1e-3f * diagonal) * kMargin;
-    const vec2 center = 0.5f * (vec2(lo) + vec2(hi));
-    const vec2 corner = center - vec2(0.5f * extent);
-    p.origin = corner.x * p.side_u + corner.y * p.side_v + lo.z * p.axis;
-    p.texels_per_unit = float(size) / extent;
-    p.max_depth = hi.z - lo.z;
-    return p;
-  }
-
-  p.origin = light.position;
-  for (const vec3& c : corners) p.max_depth = glm::max(p.max_depth, glm::length(c - light.position));
-  p.axis = glm::normalize(box.center() - light.position);
-  // A frustum works while every corner lies well in front of the light;
-  // otherwise (light inside or right beside the box) map all directions.
-  bool frustum = !box.contains(light.position) && is_finite(p.axis.x);
-  float tan_extent = 0.0f;
-  if (frustum) {
-    complete_frame(p.axis, p.side_u, p.side_v);
+    p.max_depth -= lowest;
+  } else {
+    p.origin = light.position;
+    for (const vec3& c : corners) p.max_depth = glm::max(p.max_depth, glm::length(c - light.position));
+    p.axis = glm::normalize(box.center() - light.position);
+    // A frustum works while every corner lies well in front of the light;
+    // otherwise (light inside or right beside the box) map all directions.
+    bool frustum = !box.contains(light.position) && is_finite(p.axis.x);
     for (const vec3& c : corners) {
       const vec3 q = c - light.position;
-      const float z = glm::dot(q, p.axis);
-      if (z < 0.3f * glm::length(q)) {  // beyond about 72 degrees off axis
-        frustum = false;
-        break;
-      }
-      tan_extent = glm::max(tan_extent, glm::max(glm::abs(glm::dot(q, p.side_u)), glm::abs(glm::dot(q, p.side_v))) / z);
+      if (frustum && glm::dot(q, p.axis) < 0.3f * glm::length(q)) frustum = false;  // beyond ~72 degrees off axis
     }
+    p.mapping = frustum ? LightMapping::Perspective : LightMapping::Octahedral;
   }
-  if (!frustum) {
-    p.mapping = LightMapping::Octahedral;
+
+  if (p.mapping == LightMapping::Octahedral) {
     p.axis = vec3(0.0f, 0.0f, 1.0f);
     p.side_u = vec3(1.0f, 0.0f, 0.0f);
     p.side_v = vec3(0.0f, 1.0f, 0.0f);
+    p.size = size;
+    if (size == 0) {
+      // The light sees the volume at up to its half-diagonal, however close
+      // it is to the centre (measuring at the centre distance, 0 for a light
+      // at the centre, gave a 16^2 cache and radial light leaks).
+      const float reach = glm::max(0.5f * diagonal, glm::length(box.center() - light.position));
+      const float pixel = glm::max(region.pixel, 1e-6f);
+      p.size = glm::clamp(int(std::ceil(reach * 3.5449077f / pixel)), 16, cap);
+    }
     return p;
   }
-  p.mapping = LightMapping::Perspective;
-  p.tan_extent = glm::max(tan_extent * kMargin, 1e-6f);
-  p.texels_per_unit = 0.5f * float(size) / p.tan_extent;
+
+  complete_frame(p.axis, region.long_direction, p.side_u, p.side_v);
+  const bool ortho = p.mapping == LightMapping::Orthographic;
+  // Plane coordinates: world units across the light, or tan units.
+  auto plane_coords = [&](vec3 c, bool& valid) {
+    if (ortho) return vec2(glm::dot(c, p.side_u), glm::dot(c, p.side_v));
+    const vec3 q = c - light.position;
+    const float z = glm::dot(q, p.axis);
+    valid = z > 0.3f * glm::length(q);
+    return vec2(glm::dot(q, p.side_u), glm::dot(q, p.side_v)) / glm::max(z, 1e-12f);
+  };
+  Rect whole, fitted, planes;
+  for (const vec3& c : corners) {
+    bool in_front = true;  // every corner is, for a perspective mapping
+    whole.add(plane_coords(c, in_front));
+  }
+  for (const vec3& c : region.points) {
+    bool ok = true;
+    const vec2 a = plane_coords(c, ok);
+    if (ok) fitted.add(a);
+  }
+  // Light rays through visible plane points matter where they cross the box.
+  // (From a point light a polygon partly behind the light has no bounding
+  // rectangle of its corners: such scenes keep the whole box.)
+  bool planes_ok = ortho;
+  for (const vec3& c : region.plane_points) {
+    if (!planes_ok) break;
+    planes.add(plane_coords(c, planes_ok));
+  }
+  if (!region.plane_points.empty()) {
+    if (!planes_ok) {
+      fitted = whole;
+    } else if (!planes.empty()) {
+      fitted.add(glm::max(planes.lo, whole.lo));
+      fitted.add(glm::min(planes.hi, whole.hi));
+    }
+  }
+  if (region.points.empty() && region.plane_points.empty()) fitted = whole;
+  // Keep the fit inside the box's footprint (and the box's if nothing is seen).
+  Rect r;
+  r.lo = glm::max(fitted.lo, whole.lo);
+  r.hi = glm::min(fitted.hi, whole.hi);
+  if (r.empty()) r = whole;
+  const vec2 whole_extent = whole.hi - whole.lo;
+  const float whole_max = glm::max(glm::max(whole_extent.x, whole_extent.y), 1e-6f);
+  r.lo -= vec2(kMargin * whole_max);
+  r.hi += vec2(kMargin * whole_max);
+  const vec2 extent = glm::max(r.hi - r.lo, vec2(1e-3f * whole_max));
+
+  // Texels about a pixel wide across the short side, at most max_aspect
+  // times longer along the long one.
+  const float aspect = glm::max(region.max_aspect, 1.0f);
+  int n = size;
+  if (n == 0) {
+    const vec3 middle = region.points.empty() ? box.center() : region.centroid;
+    const float distance = ortho ? 1.0f : glm::max(glm::length(middle - light.position), 1e-6f);
+    const float pixel = glm::max(region.pixel, 1e-6f) / distance;
+    const vec2 texels = extent / pixel;
+    const float wanted = glm::max(glm::min(texels.x, texels.y), glm::max(texels.x, texels.y) / aspect);
+    n = glm::clamp(int(std::ceil(glm::min(wanted, 1e7f))), 16, cap);
+  }
+  p.size = n;
+  vec2 t = extent / float(glm::max(n - 1, 1));
+  if (t.x > aspect * t.y) t.y = t.x / aspect;
+  if (t.y > aspect * t.x) t.x = t.y / aspect;
+  t = vec2(snap_up(t.x), snap_up(t.y));
+  const vec2 centre = glm::round(0.5f * (r.lo + r.hi) / t) * t;
+  const vec2 lower = centre - 0.5f * float(n) * t;
+  p.scale = vec2(1.0f) / t;
+  if (ortho) {
+    p.origin = lower.x * p.side_u + lower.y * p.side_v + lowest * p.axis;
+  } else {
+    p.lower = lower;
+  }
   return p;
 }
 

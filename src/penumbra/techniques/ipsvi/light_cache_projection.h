@@ -5,19 +5,25 @@
 // each value, section 4.4).
 //
 //   directional light: orthographic projection along the light direction onto
-//                      a square fitted to the volume box ("light frustum
-//                      adaptation", section 5.2: the box's footprint, aspect
-//                      ratio kept); depth = distance along the light from the
-//                      plane touching the box on the light's side
+//                      a rectangle of the plane across it; depth = distance
+//                      along the light from the plane touching the volume box
+//                      on the light's side
 //   point light outside the box: perspective projection from the light, a
-//                      square frustum around the box; depth = distance to the light
+//                      frustum toward the box; depth = distance to the light
 //   point light inside or beside the box (a frustum would need more than a
 //                      hemisphere): octahedral map of all directions
 //
-// Texel (i, j) covers [i, i + 1) x [j, j + 1); its centre is (i + 0.5, j + 0.5).
+// The rectangle (orthographic and perspective) is the paper's "light frustum
+// adaptation" (section 5.2): make_light_cache_projection fits it to the whole
+// box, fit_light_cache_projection (cache_fit.h) to what the camera sees. Its
+// size x size texels may be longer along side_u than along side_v (scale.x <=
+// scale.y): the fitted rectangle is long where the camera frustum runs deep
+// into the volume, and there the image resolves little (see cache_fit.h).
 #include "penumbra/base/math.h"
 #include "penumbra/base/ray.h"
 #include "penumbra/scene/light.h"
+
+#include <vector>
 
 namespace penumbra {
 
@@ -30,8 +36,8 @@ struct LightCacheProjection {
   vec3 axis{0.0f, 0.0f, 1.0f};  // orthographic: the light's travel direction; perspective: frustum axis
   vec3 side_u{1.0f, 0.0f, 0.0f};
   vec3 side_v{0.0f, 1.0f, 0.0f};
-  float texels_per_unit = 1.0f;  // orthographic: texels per world unit; perspective: per unit of tan
-  float tan_extent = 1.0f;       // perspective: half the frustum's width in tan units
+  vec2 scale{1.0f};  // texels per unit along side_u, side_v: orthographic world units, perspective tan units
+  vec2 lower{0.0f};  // perspective: the tan coordinates of texel corner (0, 0)
   float max_depth = 1.0f;        // the largest depth of a point of the box
 
   // (u, v) in texel units and the depth. Points the buffer does not cover get
@@ -40,15 +46,14 @@ struct LightCacheProjection {
     switch (mapping) {
       case LightMapping::Orthographic: {
         const vec3 q = p - origin;
-        return vec3(glm::dot(q, side_u) * texels_per_unit, glm::dot(q, side_v) * texels_per_unit, glm::dot(q, axis));
+        return vec3(glm::dot(q, side_u) * scale.x, glm::dot(q, side_v) * scale.y, glm::dot(q, axis));
       }
       case LightMapping::Perspective: {
         const vec3 q = p - origin;
         const float z = glm::dot(q, axis);
         const float depth = glm::length(q);
         if (!(z > 1e-6f * depth)) return vec3(-1.0f, -1.0f, depth);
-        const float half = 0.5f * float(size);
-        return vec3(half + glm::dot(q, side_u) / z * texels_per_unit, half + glm::dot(q, side_v) / z * texels_per_unit,
+        return vec3((glm::dot(q, side_u) / z - lower.x) * scale.x, (glm::dot(q, side_v) / z - lower.y) * scale.y,
                     depth);
       }
       case LightMapping::Octahedral: break;
@@ -64,10 +69,9 @@ struct LightCacheProjection {
   PENUMBRA_HD Ray texel_ray(vec2 uv) const {
     switch (mapping) {
       case LightMapping::Orthographic:
-        return Ray{origin + (uv.x / texels_per_unit) * side_u + (uv.y / texels_per_unit) * side_v, axis};
+        return Ray{origin + (uv.x / scale.x) * side_u + (uv.y / scale.y) * side_v, axis};
       case LightMapping::Perspective: {
-        const float half = 0.5f * float(size);
-        const vec3 d = axis + ((uv.x - half) / texels_per_unit) * side_u + ((uv.y - half) / texels_per_unit) * side_v;
+        const vec3 d = axis + (lower.x + uv.x / scale.x) * side_u + (lower.y + uv.y / scale.y) * side_v;
         return Ray{origin, glm::normalize(d)};
       }
       case LightMapping::Octahedral: break;
@@ -75,14 +79,15 @@ struct LightCacheProjection {
     return Ray{origin, octahedral_decode(uv / float(size))};
   }
 
-  // World size of one texel at a depth (for filters given in world units).
-  PENUMBRA_HD float texel_world_size(float depth) const {
+  // World size of one texel along side_u and side_v at a depth (for filters
+  // given in world units).
+  PENUMBRA_HD vec2 texel_world_size(float depth) const {
     switch (mapping) {
-      case LightMapping::Orthographic: return 1.0f / texels_per_unit;
-      case LightMapping::Perspective: return glm::max(depth, 1e-6f) / texels_per_unit;
+      case LightMapping::Orthographic: return vec2(1.0f) / scale;
+      case LightMapping::Perspective: return vec2(glm::max(depth, 1e-6f)) / scale;
       case LightMapping::Octahedral: break;
     }
-    return glm::max(depth, 1e-6f) * 3.5449077f / float(size);  // sqrt(4 pi) / size
+    return vec2(glm::max(depth, 1e-6f) * 3.5449077f / float(size));  // sqrt(4 pi) / size
   }
 
   // Octahedral map (Meyer et al. 2010) of a direction to [0, 1]^2 and back.
@@ -107,8 +112,26 @@ struct LightCacheProjection {
   }
 };
 
-// Fits the projection of `light` to `box` with `size` texels per side.
-// Environment lights have no direction; callers skip them.
+// What fit_light_cache_projection fits the cache to (cache_fit.h builds it
+// from the camera).
+struct LightCacheRegion {
+  std::vector<vec3> points;        // the hull of the visible part of the box; empty: the whole box
+  vec3 centroid{0.0f};             // their centre
+  std::vector<vec3> plane_points;  // corners of the visible parts of planes (their light rays cross the box)
+  vec3 long_direction{0.0f};       // texels may be longer along this direction's light-space image
+  float max_aspect = 4.0f;         // at most this much longer
+  float pixel = 0.0f;              // world size of a pixel at the centroid (sizes the cache when size is 0)
+};
+
+// The projection of `light` fitted to `region`'s light-space bounding
+// rectangle (within the box's): `size` texels per side, or with 0 texels a
+// pixel wide across the rectangle's short side, at most `max_size`. The
+// mapping, the axis and the depths depend only on the light and the box.
+LightCacheProjection fit_light_cache_projection(const Light& light, const Box3& box, const LightCacheRegion& region,
+                                                int size, int max_size);
+
+// Fits the projection of `light` to the whole `box` with `size` square
+// texels per side. Environment lights have no direction; callers skip them.
 LightCacheProjection make_light_cache_projection(const Light& light, const Box3& box, int size);
 
 }  // namespace penumbra

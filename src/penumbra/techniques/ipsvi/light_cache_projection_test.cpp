@@ -64,7 +64,8 @@ TEST(LightCacheProjection, DirectionalIsOrthographicAlongTheLight) {
   EXPECT_NEAR(b.x, a.x, 1e-4f);
   EXPECT_NEAR(b.y, a.y, 1e-4f);
   // The square fits the box footprint: texels are as small as they can be.
-  EXPECT_NEAR(p.texel_world_size(0.0f), 1.0f / p.texels_per_unit, 1e-6f);
+  EXPECT_NEAR(p.texel_world_size(0.0f).x, 1.0f / p.scale.x, 1e-6f);
+  EXPECT_EQ(p.scale.x, p.scale.y) << "square texels over the whole box";
 }
 
 TEST(LightCacheProjection, PointOutsideIsAFrustumAndInsideAnOctahedralMap) {

@@ -4,6 +4,7 @@
 #include "penumbra/base/memory_budget.h"
 #include "penumbra/base/parallel.h"
 #include "penumbra/render/render_lit.h"
+#include "penumbra/techniques/ipsvi/cache_fit.h"
 #include "penumbra/techniques/ipsvi/ipsvi_ray.h"
 
 #include <algorithm>
@@ -13,6 +14,12 @@
 namespace penumbra {
 namespace {
 
+bool same_projection(const LightCacheProjection& a, const LightCacheProjection& b) {
+  return a.mapping == b.mapping && a.size == b.size && a.origin == b.origin && a.axis == b.axis &&
+         a.side_u == b.side_u && a.side_v == b.side_v && a.scale == b.scale && a.lower == b.lower &&
+         a.max_depth == b.max_depth;
+}
+
 struct BlockPixel {
   int x, y;
   float weight;
@@ -20,64 +27,81 @@ struct BlockPixel {
 
 }  // namespace
 
-int ipsvi_cache_size(const Scene& scene, const IpsviSettings& settings) {
-  if (settings.cache_size != 0) {
-    if (settings.cache_size < 16 || settings.cache_size > 4096) {
-      throw InvalidArgument("cache_size", "must be 0 (automatic) or in [16, 4096]");
-    }
-    return settings.cache_size;
+std::vector<LightCacheProjection> fit_ipsvi_caches(const Scene& scene, const IpsviSettings& settings) {
+  if (settings.cache_size != 0 && (settings.cache_size < 16 || settings.cache_size > 4096)) {
+    throw InvalidArgument("cache_size", "must be 0 (automatic) or in [16, 4096]");
   }
-  // A texel about as wide as a pixel at the volume's centre: finer texels
-  // would be missed by the rays of a line (holes that fall back to longer
-  // light segments), coarser ones blur shadows.
   const Box3 box = scene.volume().world_box();
-  const Camera& camera = scene.camera();
-  const float height = camera.projection == Projection::Orthographic
-                           ? camera.ortho_height
-                           : 2.0f * std::tan(0.5f * glm::radians(camera.fov_deg)) * glm::length(box.center() - camera.eye);
-  const float pixel = std::max(height / float(scene.render().height), 1e-6f);
-  float extent = 0.0f;
+  const RenderSettings& render = scene.render();
+  const std::vector<Plane>& planes = scene.planes();
+  const LightCacheRegion region = visible_cache_region(scene.camera().view(), render.width, render.height, box,
+                                                       planes.data(), int(planes.size()));
+  // Automatic: the finest any light asks for, at most three times the
+  // image's longer side, so that zooming in cannot grow the cache without
+  // bound; an octahedral map (light inside the box) covers every direction,
+  // the box's whole surface: twice that. (Engine CT at fov 3, 128^2, against
+  // shadow-rays: a cap of 2x with texels up to 8x long gave mean / p99 dE
+  // 0.85 / 5.7 in 5.3 MB, stripes along the long texels on slanted
+  // surfaces; 3x and 4x long 0.71 / 4.9 in 8.6 MB; 4x and 3x long 0.56 /
+  // 4.2 in 15 MB; the whole box at a texel per pixel 0.48 / 2.5 in 175 MB.)
+  const int cap = std::clamp(3 * std::max(render.width, render.height), 16, 2048);
+  int size = settings.cache_size;
+  std::vector<LightCacheProjection> out;
   for (const Light& light : scene.lights()) {
-    if (light.type == LightType::Environment) continue;
-    const LightCacheProjection p = make_light_cache_projection(light, box, 1);
-    // A light inside the box (octahedral map) sees the volume at up to its
-    // half-diagonal, however close it is to the centre: measuring at the
-    // centre distance (0 for a light at the centre) gave a 16^2 cache and
-    // radial light leaks.
-    const float reach = p.mapping == LightMapping::Octahedral ? 0.5f * glm::length(box.extent()) : 0.0f;
-    const float depth = light.at_infinity() ? 0.0f : glm::max(glm::length(box.center() - light.position), reach);
-    extent = std::max(extent, p.texel_world_size(depth));
+    if (light.type == LightType::Environment) continue;  // not a single-scattering light (light.h)
+    out.push_back(fit_light_cache_projection(light, box, region, 0, cap));
+    if (out.back().mapping == LightMapping::Octahedral) out.back() = fit_light_cache_projection(light, box, region, 0, 2 * cap);
+    if (settings.cache_size == 0) size = std::max(size, out.back().size);
   }
-  return std::clamp(int(std::ceil(extent / pixel)), 16, 4096);
+  for (std::size_t i = 0, k = 0; i < scene.lights().size(); ++i) {
+    const Light& light = scene.lights()[i];
+    if (light.type == LightType::Environment) continue;
+    if (out[k].size != size) out[k] = fit_light_cache_projection(light, box, region, size, size);
+    ++k;
+  }
+  return out;
+}
+
+int ipsvi_cache_size(const Scene& scene, const IpsviSettings& settings) {
+  const std::vector<LightCacheProjection> fits = fit_ipsvi_caches(scene, settings);
+  return fits.empty() ? 16 : fits.front().size;
 }
 
 void IpsviRenderer::prepare(const Scene& scene, const IpsviSettings& settings) {
   resources_.update(scene, scene.material().shading == Shading::Phong);
   const SceneVersions& v = scene.versions();
-  const int cache_size = ipsvi_cache_size(scene, settings);
+  std::vector<LightCacheProjection> fits = fit_ipsvi_caches(scene, settings);
+  const int cache_size = fits.empty() ? 16 : fits.front().size;
   const bool diffuse_changed = (settings.albedo > 0.0f) != (settings_.albedo > 0.0f);
   const bool stale = !built_ || v.lights != lights_version_ || v.geometry != geometry_version_ ||
-                     v.data != data_version_ || cache_size != cache_.size() || diffuse_changed;
+                     v.data != data_version_ || settings.cache_size != settings_.cache_size || diffuse_changed;
+  bool refit = stale || fits.size() != lights_.size();
+  for (std::size_t i = 0; !refit && i < fits.size(); ++i) refit = !same_projection(fits[i], lights_[i].projection);
   settings_ = settings;
-  if (!stale) return;
-  lights_.clear();
+  if (!refit) return;
+  // A new fit (the camera moved, or anything the cache depends on changed):
+  // the projections and the caches' starting states, O(texels) ray-box tests.
+  if (stale) lights_.clear();
   const Box3 box = scene.volume().world_box();
+  check_memory_budget("ipsvi initial cache", checked_product({std::uint64_t(cache_size), std::uint64_t(cache_size),
+                                                              sizeof(vec2), std::uint64_t(fits.size())}));
+  std::size_t i = 0;
+  lights_.resize(fits.size());
   for (const Light& light : scene.lights()) {
-    if (light.type == LightType::Environment) continue;  // not a single-scattering light (light.h)
-    LightCache lc;
+    if (light.type == LightType::Environment) continue;
+    LightCache& lc = lights_[i];
     lc.light = light;
-    check_memory_budget("ipsvi initial cache",
-                        checked_product({std::uint64_t(cache_size), std::uint64_t(cache_size), sizeof(vec2)}));
-    lc.projection = make_light_cache_projection(light, box, cache_size);
+    lc.projection = fits[i];
     lc.initial = initial_cache_state(lc.projection, box, scene.clip_planes());
-    lights_.push_back(std::move(lc));
+    ++i;
   }
-  cache_.allocate(cache_size, settings.albedo > 0.0f);
+  if (cache_size != cache_.size() || stale) cache_.allocate(cache_size, settings.albedo > 0.0f);
   lights_version_ = v.lights;
   geometry_version_ = v.geometry;
   data_version_ = v.data;
   built_ = true;
-  ++rebuilds_;
+  if (stale) ++rebuilds_;
+  ++refits_;
 }
 
 void IpsviRenderer::render(const Scene& scene, Image& image, RenderStats* stats) {
@@ -155,7 +179,7 @@ void IpsviRenderer::render(const Scene& scene, Image& image, RenderStats* stats)
         out.depth = written.depth;
         out.direct = stored.direct * exp_nonpositive(-tau.direct);
         if (scattering.has_diffuse()) {
-          const float spread =
+          const vec2 spread =
               std::sqrt(delta * scattering.spread_per_length) / kernel.projection.texel_world_size(written.depth);
           out.diffuse = kernel.cache.read_diffuse(center, spread) *
                         vec3(exp_nonpositive(-tau.diffuse.r), exp_nonpositive(-tau.diffuse.g),

@@ -49,10 +49,14 @@ struct IpsviFrameCounts {
   std::uint64_t blocks = 0;           // blocks of lines processed (synchronisation points)
 };
 
-// The cache size `settings` asks for, or with 0 the one whose texels are about
-// as wide as a pixel at the volume's centre (for a light inside the box: at
-// the box's half-diagonal from the light) (16..4096). Throws InvalidArgument
-// naming cache_size for a size outside [16, 4096].
+// The illumination cache of each non-environment light, fitted to what the
+// camera sees (cache_fit.h), all with the same size: the one `settings`
+// asks for, or with 0 the largest whose texels are about a pixel wide at the
+// visible part of the volume (for a light inside the box: at the box's
+// half-diagonal from the light), 16 to three times the image's longer side.
+// Throws InvalidArgument naming cache_size for a size outside [16, 4096].
+std::vector<LightCacheProjection> fit_ipsvi_caches(const Scene& scene, const IpsviSettings& settings);
+// The size of those caches (16 without lights).
 int ipsvi_cache_size(const Scene& scene, const IpsviSettings& settings);
 
 class IpsviRenderer {
@@ -61,7 +65,11 @@ class IpsviRenderer {
   void render(const Scene& scene, Image& image, RenderStats* stats = nullptr);
 
   std::uint64_t aux_bytes() const;
+  // Rebuilds: lights, data, clip planes, cache_size or the diffuse channel
+  // changed. Refits (rebuilds included): the cache was fitted anew, as after
+  // a camera move.
   std::uint64_t rebuilds() const { return rebuilds_; }
+  std::uint64_t refits() const { return refits_; }
   const IpsviFrameCounts& last_counts() const { return counts_; }
 
  private:
@@ -81,7 +89,7 @@ class IpsviRenderer {
   int axis_hint_ = 1;
   std::uint64_t lights_version_ = 0, geometry_version_ = 0, data_version_ = 0;
   bool built_ = false;
-  std::uint64_t rebuilds_ = 0;
+  std::uint64_t rebuilds_ = 0, refits_ = 0;
   IpsviFrameCounts counts_;
 };
 
