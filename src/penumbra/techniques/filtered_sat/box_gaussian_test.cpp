@@ -7,6 +7,8 @@
 // cylinder blocks and the plates between them), so the tables stay small.
 #include "penumbra/analysis/color_space.h"
 #include "penumbra/io/scene_json.h"
+#include "penumbra/render/parameters.h"
+#include "penumbra/techniques/registry.h"
 #include "test_scene.h"
 
 #include <gtest/gtest.h>
@@ -54,6 +56,27 @@ Scene engine_crop_scene() {
   return scene;
 }
 
+// One filtered-sat instance for a test's renders, so its tables are built
+// once (parameter changes rebuild the caches only).
+class FilteredSatRenderer {
+ public:
+  explicit FilteredSatRenderer(const Scene& scene)
+      : scene_(scene), info_(find_technique("filtered-sat")), technique_(info_.create()) {}
+  Image render(const ParameterSettings& settings) {
+    ParameterValues values(info_.parameters);
+    values.apply(settings, true);
+    technique_->prepare(scene_, values);
+    Image image;
+    technique_->render(scene_, image);
+    return image;
+  }
+
+ private:
+  const Scene& scene_;
+  const TechniqueInfo& info_;
+  std::unique_ptr<Technique> technique_;
+};
+
 struct LightnessDifference {
   double mean = 0.0, p99 = 0.0, max = 0.0;
 };
@@ -77,9 +100,10 @@ LightnessDifference lightness_difference(const Image& a, const Image& b) {
 TEST(FilteredSatOnRealData, TheDefaultCacheMatchesPerSampleLookups) {
   if (!have_engine()) GTEST_SKIP() << "the engine CT is not in " << PENUMBRA_SHARED_DATA_DIR;
   const Scene scene = engine_crop_scene();
-  const Image direct = testing::render_with(scene, "filtered-sat", {{"shadow_cache", false}});
-  const Image cached = testing::render_with(scene, "filtered-sat");
-  const Image always_cache = testing::render_with(scene, "filtered-sat", {{"cache_tolerance", 1.0}});
+  FilteredSatRenderer renderer(scene);
+  const Image direct = renderer.render({{"shadow_cache", false}});
+  const Image cached = renderer.render({});
+  const Image always_cache = renderer.render({{"cache_tolerance", 1.0}});
   testing::save_test_image(cached, "engine-crop-filtered-sat.png");
   const LightnessDifference d = lightness_difference(cached, direct);
   const LightnessDifference plain = lightness_difference(always_cache, direct);
@@ -96,12 +120,12 @@ TEST(FilteredSatOnRealData, TheDefaultCacheMatchesPerSampleLookups) {
 TEST(FilteredSatOnRealData, BoxAndGaussianOfComparableWidthLookAlikeOnTheEngine) {
   if (!have_engine()) GTEST_SKIP() << "the engine CT is not in " << PENUMBRA_SHARED_DATA_DIR;
   const Scene scene = engine_crop_scene();
-  const Image box = testing::render_with(scene, "filtered-sat", {{"filter_voxels", 9.0}});
-  const Image same_variance =
-      testing::render_with(scene, "filtered-sat", {{"filter_voxels", 9.0}, {"kernel", std::string("gaussian")}});
+  FilteredSatRenderer renderer(scene);
+  const Image box = renderer.render({{"filter_voxels", 9.0}});
+  const Image same_variance = renderer.render({{"filter_voxels", 9.0}, {"kernel", std::string("gaussian")}});
   // filter_voxels names the box of the Gaussian's variance: sigma = w / sqrt(12).
-  const Image paper_sigma = testing::render_with(
-      scene, "filtered-sat", {{"filter_voxels", 7.0 * std::sqrt(12.0)}, {"kernel", std::string("gaussian")}});
+  const Image paper_sigma =
+      renderer.render({{"filter_voxels", 7.0 * std::sqrt(12.0)}, {"kernel", std::string("gaussian")}});
   const Image hard = testing::render_with(scene, "shadow-rays");
   const LightnessDifference a = lightness_difference(box, same_variance);
   const LightnessDifference b = lightness_difference(box, paper_sigma);
