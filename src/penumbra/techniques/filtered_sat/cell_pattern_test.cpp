@@ -97,7 +97,8 @@ namespace {
 // distance: the material between a sample below the face and the face
 // itself, so the face comes out brighter than shadow-rays draw it (measured:
 // an opaque face 51 L* with shadow-rays, 23 with the paper's cuboid at
-// filter 7, 91 with the offset; a translucent one 67 and 88). Hence the
+// filter 7, 91 with the offset; a translucent one 67 and 88; through an SSAT, a
+// point light on the same line: 51, 27, 91). Hence the
 // option is off by default (docs/filtered-sat.md, "Self-shadowing").
 TEST(FilteredSatCellPattern, PatchOffsetLiftsTheSelfShadowingOfALitFace) {
   for (const float alpha : {0.99f, 0.5f}) {
@@ -112,6 +113,21 @@ TEST(FilteredSatCellPattern, PatchOffsetLiftsTheSelfShadowingOfALitFace) {
     EXPECT_GT(reference - paper, 3.0) << "the paper's cuboid darkens the face";
     EXPECT_GT(offset, reference) << "the offset leaves no self-shadowing";
   }
+  // The same through an SSAT: a point light along the same oblique direction.
+  Scene scene = lit_cut_face(0.99f);
+  Light point;
+  point.type = LightType::Point;
+  point.position = vec3(0.0f, 0.0f, 4.0f) - 60.0f * scene.lights()[0].direction;
+  point.intensity = 3600.0f;
+  scene.set_lights({point});
+  auto lightness = [](const Image& image) { return srgb_linear_to_lab(testing::mean_rgb(image, 8, 8, 56, 56)).l; };
+  const double reference = lightness(render_with(scene, "shadow-rays", {{"shadow_cache", false}}));
+  const double paper = lightness(render_with(scene, "filtered-sat", {{"filter_voxels", 7.0}}));
+  const double offset = lightness(render_with(scene, "filtered-sat", {{"filter_voxels", 7.0}, {"patch_offset", 1.0}}));
+  std::printf("point light, lit face L*: shadow-rays %.2f, filter 7 %.2f, with patch_offset 1 %.2f\n", reference,
+              paper, offset);
+  EXPECT_GT(reference - paper, 3.0);
+  EXPECT_GT(offset, reference);
 }
 
 }  // namespace
