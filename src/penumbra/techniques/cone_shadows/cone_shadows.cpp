@@ -3,6 +3,7 @@
 #include "penumbra/render/render_lit.h"
 #include "penumbra/render/scene_resources.h"
 #include "penumbra/techniques/cone_shadows/cone_march.h"
+#include "penumbra/techniques/sat_common/table_dependencies.h"
 #include "penumbra/techniques/sat_common/visibility_cache.h"
 #include "penumbra/techniques/sat_common/volume_aligned_table.h"
 
@@ -14,8 +15,8 @@ namespace {
 class ConeShadows final : public Technique {
  public:
   void prepare(const Scene& scene, const ParameterValues& params) override {
-    const bool shared_changed = resources_.update(scene);
-    const bool table_rebuilt = table_.update(scene, resources_, shared_changed, params.number("sat_resolution"));
+    resources_.update(scene);
+    const bool table_rebuilt = table_.update(scene, resources_, params.number("sat_resolution"));
     if (table_rebuilt) {
       caches_.clear();
       ++rebuilds_;
@@ -33,15 +34,19 @@ class ConeShadows final : public Technique {
     }
     ParameterValues cache_params = params;
     cache_params.set("sat_resolution", params.table().at("sat_resolution").default_value);
-    if (caches_.current(cache_params) && scene.versions().lights == lights_version_) return;
+    // A light's colour or intensity does not change its transmittance: a
+    // light's cache is rebuilt when it moves (or the table or parameters
+    // change), the others are kept.
+    std::vector<LightPlacement> placements = light_placements(scene.lights());
+    if (caches_.current(cache_params) && placements == placements_) return;
     const std::vector<Light>& lights = scene.lights();
     const ConeMarch cone = cone_;
-    caches_.build(
+    rebuilds_ += std::uint64_t(caches_.update(
         lights.size(), cone.box, visibility_cache_dims(scene.volume().dims(), float(params.number("cache_resolution"))),
         cache_params, [&](std::size_t i) { return lights[i].type != LightType::Environment; },
-        [&](std::size_t i, vec3 p) { return cone.transmittance(p, sample_light(lights[i], p)); });
-    lights_version_ = scene.versions().lights;
-    ++rebuilds_;
+        [&](std::size_t i) { return i >= placements_.size() || !(placements[i] == placements_[i]); },
+        [&](std::size_t i, vec3 p) { return cone.transmittance(p, sample_light(lights[i], p)); }));
+    placements_ = std::move(placements);
   }
 
   void render(const Scene& scene, Image& image, RenderStats* stats) override {
@@ -56,7 +61,7 @@ class ConeShadows final : public Technique {
   }
 
   std::uint64_t aux_bytes() const override { return table_.bytes() + caches_.bytes(); }
-  // Table builds and cache builds count one each.
+  // The table build and each light's cache build count one each.
   std::uint64_t rebuilds() const override { return rebuilds_; }
 
  private:
@@ -64,7 +69,7 @@ class ConeShadows final : public Technique {
   VolumeAlignedTable table_{"cone-shadows summed-area table"};
   ConeMarch cone_;
   LightVisibilityCaches caches_;
-  std::uint64_t lights_version_ = 0;  // what the caches were built for
+  std::vector<LightPlacement> placements_;  // what the caches were built for
   std::uint64_t rebuilds_ = 0;
 };
 

@@ -19,9 +19,12 @@
 //   cache_resolution      that grid's size as a fraction of the data grid
 //   shadow_density_scale  multiplies the optical depth
 // Passes
-//   prepare: the table when the data, TF, clip planes or resolution change;
-//            with the cache, one transmittance grid per light, also rebuilt
-//            when the lights or the cone parameters change
+//   prepare: the table when the data, the shadow TF's extinction, the clip
+//            planes or the resolution change (not for floor planes, lights
+//            or a render-only TF edit); with the cache, one transmittance
+//            grid per light, rebuilt with the table, for that light when it
+//            moves (not for its colour or intensity), and for all when the
+//            cone parameters change
 //   render:  one ray-casting pass; per lit sample one cache read per light
 //            (or one cone march)
 #include "penumbra/render/technique.h"

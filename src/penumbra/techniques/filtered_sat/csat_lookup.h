@@ -21,10 +21,12 @@ PENUMBRA_HD PENUMBRA_FORCE_INLINE float csat_filtered_depth_along(const SummedAr
                                                    float sign, const ShadowFilter& filter, vec3 q) {
   constexpr int kA = Axis == 0 ? 1 : 0;
   constexpr int kB = Axis == 2 ? 1 : 2;
-  // The cuboid's extent along the light axis, clamped to the grid.
+  // The cuboid's extent along the light axis, from the sample (moved
+  // `offset` toward the light) to the table's face, clamped to the grid.
   const float end = float(grid.cells[Axis]);
-  const float w0 = sign > 0.0f ? glm::max(q[Axis], 0.0f) : 0.0f;
-  const float w1 = sign > 0.0f ? end : glm::min(q[Axis], end);
+  const float start = q[Axis] + sign * filter.offset / grid.cell;
+  const float w0 = sign > 0.0f ? glm::max(start, 0.0f) : 0.0f;
+  const float w1 = sign > 0.0f ? end : glm::min(start, end);
   if (!(w1 > w0)) return 0.0f;  // beyond the table on the light side: nothing in between
   const float half = filter.half_width / grid.cell;
   // column(a, b): the extinction integral over [0, a] x [0, b] x [w0, w1].

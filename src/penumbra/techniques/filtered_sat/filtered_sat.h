@@ -15,22 +15,30 @@
 //   filter_voxels         patch width in voxels of the smallest spacing (the
 //                         Gaussian gets the same variance as this box)
 //   kernel                box | gaussian
+//   patch_offset          start the filtered volume this many filter
+//                         half-widths toward the light (0: the paper's cuboid
+//                         from the sample; more leaves out the material of
+//                         the lit surface a sample lies on)
 //   sat_resolution        table cells per voxel along each axis (1 = the data
 //                         resolution; the paper's comparisons use 0.5)
 //   shadow_cache          store each light's transmittance on a grid
 //                         (Algorithm 1) instead of reading the tables per sample
 //   cache_resolution      that grid's size as a fraction of the data grid
+//   cache_tolerance       cache cells whose 8 texels differ by more than this
+//                         read the tables instead (1: the cache everywhere)
 //   shadow_density_scale  multiplies the filtered optical depth (Fig. 7b)
 // Passes
-//   prepare: the tables, rebuilt when the data (or time step), the TF, the
-//            lights, the clip planes or sat_resolution change; then, with the
-//            cache, one transmittance grid per light, rebuilt also when the
-//            filter, kernel, density scale or cache resolution change (never
-//            the tables for those)
+//   prepare: the tables, each rebuilt when what it is made of changes: the
+//            data (or time step), the shadow TF's extinction, the clip
+//            planes, sat_resolution, or its own light's direction or
+//            position (never for a colour, an intensity, a floor plane or a
+//            render-only TF edit); then, with the cache, one transmittance
+//            grid per light, rebuilt when its table is, or when the filter,
+//            kernel, offset, density scale or cache resolution change
 //   render:  one ray-casting pass; per lit sample one cache read per light,
 //            or one table lookup (4 column sums for the box, 81 for the
-//            Gaussian); points outside the volume box (floors) always read
-//            the tables
+//            Gaussian) where the cache cell is not smooth; points outside
+//            the volume box (floors) always read the tables
 #include "penumbra/render/technique.h"
 
 namespace penumbra {

@@ -135,9 +135,9 @@ TEST(FilteredSat, ThreeOrthodirectionalLightsShareOneTable) {
 }
 
 TEST(FilteredSat, FilterChangesNeverRebuildTheTables) {
-  Scene scene = lit_spheres();
   const TechniqueInfo& info = find_technique("filtered-sat");
   for (const bool cache : {false, true}) {
+    Scene scene = lit_spheres();
     ParameterValues params(info.parameters);
     params.set("shadow_cache", cache);
     auto t = info.create();
@@ -156,7 +156,8 @@ TEST(FilteredSat, FilterChangesNeverRebuildTheTables) {
     params.set("shadow_density_scale", 0.5);
     t->prepare(scene, params);
     EXPECT_EQ(t->rebuilds(), built + (cache ? 2u : 0u));
-    // Camera and material changes rebuild nothing; lights, TF and clip planes rebuild the tables.
+    // Camera and material changes rebuild nothing; a light move, an
+    // extinction edit and clip planes rebuild the tables.
     Camera camera = scene.camera();
     camera.orbit(20.0f, 5.0f);
     scene.set_camera(camera);
@@ -164,10 +165,14 @@ TEST(FilteredSat, FilterChangesNeverRebuildTheTables) {
     t->prepare(scene, params);
     EXPECT_EQ(t->rebuilds(), built + (cache ? 2u : 0u));
     const std::uint64_t before = t->rebuilds();
-    scene.set_lights(scene.lights());
+    Light moved = scene.lights()[0];
+    moved.direction = glm::normalize(vec3(-0.3f, 0.6f, -1.0f));
+    scene.set_lights({moved});
     t->prepare(scene, params);
     EXPECT_EQ(t->rebuilds(), before + built);
-    scene.set_transfer_function(scene.transfer_function());
+    TransferFunction denser = scene.transfer_function();
+    denser.set_density_scale(2.0f);
+    scene.set_transfer_function(denser);
     t->prepare(scene, params);
     EXPECT_EQ(t->rebuilds(), before + 2 * built);
     scene.set_clip_planes({vec4(0.0f, 0.0f, 1.0f, 5.0f)});
@@ -176,6 +181,55 @@ TEST(FilteredSat, FilterChangesNeverRebuildTheTables) {
     params.set("sat_resolution", 0.5);
     t->prepare(scene, params);
     EXPECT_EQ(t->rebuilds(), before + 4 * built);
+  }
+}
+
+// Issue 22: only what a table depends on rebuilds it. A light's colour and
+// intensity, a floor plane, re-setting equal lights or TF, and a render-only
+// TF edit while a separate shadow TF is set rebuild nothing; moving one of
+// two lights rebuilds that light's table and cache only; a shadow-TF edit
+// rebuilds both lights' tables and caches.
+TEST(FilteredSat, OnlyWhatATableDependsOnRebuildsIt) {
+  for (const std::string technique : {"filtered-sat", "cone-shadows", "sat-ao"}) {
+    Scene scene = lit_spheres();
+    Light point;
+    point.type = LightType::Point;
+    point.position = vec3(-30.0f, -40.0f, 45.0f);
+    point.intensity = 4500.0f;
+    scene.set_lights({scene.lights()[0], point});
+    scene.set_shadow_transfer_function(scene.transfer_function());
+    const TechniqueInfo& info = find_technique(technique);
+    const ParameterValues params(info.parameters);
+    auto t = info.create();
+    t->prepare(scene, params);
+    const bool per_light = technique != "sat-ao";
+    // Tables: filtered-sat one per light here, the baselines one in all;
+    // caches: one per light (sat-ao: one).
+    const std::uint64_t tables = technique == "filtered-sat" ? 2u : 1u, caches = per_light ? 2u : 1u;
+    EXPECT_EQ(t->rebuilds(), tables + caches) << technique;
+    const std::uint64_t built = t->rebuilds();
+    std::vector<Light> lights = scene.lights();
+    lights[0].color = vec3(0.2f, 0.5f, 1.0f);
+    lights[1].intensity = 900.0f;
+    scene.set_lights(lights);
+    scene.set_planes({Plane{vec3(0.0f, 0.0f, -30.0f), vec3(0.0f, 0.0f, 1.0f), vec3(0.8f)}});
+    scene.set_planes({Plane{vec3(0.0f, 0.0f, -35.0f), vec3(0.0f, 0.0f, 1.0f), vec3(0.5f)}});
+    TransferFunction render_only = scene.transfer_function();
+    render_only.set_density_scale(0.5f);
+    scene.set_transfer_function(render_only);
+    scene.set_shadow_transfer_function(scene.shadow_transfer_function());
+    t->prepare(scene, params);
+    EXPECT_EQ(t->rebuilds(), built) << technique << ": colour, intensity, floor or render TF rebuilt something";
+    lights[1].position += vec3(5.0f, 0.0f, 0.0f);
+    scene.set_lights(lights);
+    t->prepare(scene, params);
+    EXPECT_EQ(t->rebuilds(), built + (technique == "filtered-sat" ? 2u : per_light ? 1u : 0u)) << technique;
+    TransferFunction shadow = *scene.shadow_transfer_function();
+    shadow.set_density_scale(2.0f);
+    scene.set_shadow_transfer_function(shadow);
+    const std::uint64_t moved = t->rebuilds();
+    t->prepare(scene, params);
+    EXPECT_EQ(t->rebuilds(), moved + tables + caches) << technique;
   }
 }
 

@@ -5,6 +5,7 @@
 #include "penumbra/render/lighting.h"
 #include "penumbra/scene/light.h"
 #include "penumbra/techniques/filtered_sat/light_tables.h"
+#include "penumbra/volume/volume_sampler.h"
 #include "penumbra/volume/volume_view.h"
 
 namespace penumbra {
@@ -19,11 +20,47 @@ struct FilteredVisibility {
   PENUMBRA_HD vec3 operator()(int light, vec3 p, const LightSample&) const { return vec3(transmittance(light, p)); }
 };
 
-// Cache lookups inside the volume box; the tables elsewhere (plane hits).
+// A trilinear read of a float cache at world positions, and the spread
+// (largest minus smallest) of the 8 texels it interpolates: a bound on how
+// far the interpolation can be from the visibility anywhere in the cell.
+template <class L>
+PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Float cache_read_with_spread(const VolumeView& cache,
+                                                                           const typename L::Vec3& world,
+                                                                           typename L::Float& spread) {
+  using F = typename L::Float;
+  using V = typename L::Vec3;
+  using X = typename L::Index;
+  const VoxelGrid g(cache.dims);
+  const GridCell<L> cell(g, (world - V(cache.origin)) / V(cache.spacing));
+  const float* data = static_cast<const float*>(cache.data);
+  F c000, c100, c010, c110, c001, c101, c011, c111;
+  load_voxel_pair(data, cell.base, g.stride_x, g.count, c000, c100);
+  load_voxel_pair(data, cell.base + X(g.stride_y), g.stride_x, g.count, c010, c110);
+  load_voxel_pair(data, cell.base + X(g.stride_z), g.stride_x, g.count, c001, c101);
+  load_voxel_pair(data, cell.base + X(g.stride_y + g.stride_z), g.stride_x, g.count, c011, c111);
+  const F hi = max(max(max(c000, c100), max(c010, c110)), max(max(c001, c101), max(c011, c111)));
+  const F lo = min(min(min(c000, c100), min(c010, c110)), min(min(c001, c101), min(c011, c111)));
+  spread = hi - lo;
+  const F x00 = c000 + cell.fx * (c100 - c000);
+  const F x10 = c010 + cell.fx * (c110 - c010);
+  const F x01 = c001 + cell.fx * (c101 - c001);
+  const F x11 = c011 + cell.fx * (c111 - c011);
+  const F y0 = x00 + cell.fy * (x10 - x00);
+  const F y1 = x01 + cell.fy * (x11 - x01);
+  return y0 + cell.fz * (y1 - y0);
+}
+
+// Cache lookups inside the volume box where the cache is smooth; the tables
+// elsewhere: outside the box (plane hits), and in cache cells whose texels
+// differ by more than `tolerance` (where the transmittance jumps, at lit
+// surfaces, interpolating it would smear the shadow of the material behind
+// the surface onto the surface; issue 22). A tolerance of 1 or more reads
+// the cache everywhere inside the box.
 struct CachedFilteredVisibility {
   FilteredVisibility direct;
   const VolumeView* caches = nullptr;  // per light; data == nullptr for lights without a cache
   Box3 box;
+  float tolerance = 1.0f;
 
   PENUMBRA_HD vec3 operator()(int light, vec3 p, const LightSample& ls) const {
     return lanes<ScalarLanes>(light, p, ls, true);
@@ -31,7 +68,22 @@ struct CachedFilteredVisibility {
   template <class L>
   PENUMBRA_HD typename L::Vec3 lanes(int light, const typename L::Vec3& p, const LightSampleL<L>& ls,
                                      typename L::Mask active) const {
-    return cached_visibility<L>(caches[light], box, direct, light, p, ls, active);
+    using F = typename L::Float;
+    using V = typename L::Vec3;
+    const VolumeView& cache = caches[light];
+    if (!cache.data) return light_visibility<L>(direct, light, p, ls, active);
+    F spread;
+    const F cached = cache_read_with_spread<L>(cache, p, spread);
+    const auto needs_tables = active & (!box_contains<L>(box, p) | (spread > tolerance));
+    if constexpr (L::kWidth == 1) {
+      return needs_tables ? direct(light, p, ls) : V(cached);
+    } else {
+      V result(cached);
+      if (any(needs_tables)) {
+        result = select(needs_tables, light_visibility<L>(direct, light, p, ls, needs_tables), result);
+      }
+      return result;
+    }
   }
 };
 

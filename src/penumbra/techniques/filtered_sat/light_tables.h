@@ -40,19 +40,42 @@ PENUMBRA_HD inline float filtered_optical_depth(const LightTableLookup& light, c
 class LightTables {
  public:
   // Builds every table the lights need from the shadow view's extinction,
-  // with cells of `cell` world units. Throws OutOfMemoryBudget before
-  // allocating a table that does not fit.
-  void build(const RenderView& shadows, const std::vector<Light>& lights, float cell);
+  // with cells of `cell` world units. With `reuse`, a table of the last
+  // build whose placement (a CSAT's frame, an SSAT's light position) and
+  // cell are the same is kept instead of rebuilt: pass it when the
+  // extinction (data, shadow TF, clip planes) did not change since. Tables
+  // no light needs any more are released before new ones are built. Returns
+  // how many tables it built. Throws OutOfMemoryBudget before allocating a
+  // table that does not fit.
+  int build(const RenderView& shadows, const std::vector<Light>& lights, float cell, bool reuse = false);
   void clear();
 
   // One per light of the last build, in the scene's order.
   const std::vector<LightTableLookup>& lookups() const { return lookups_; }
+  // Per light: an id of the table it reads, new for every table built, so a
+  // light whose id did not change sees the same table as before.
+  const std::vector<std::uint64_t>& table_ids() const { return light_table_ids_; }
   int table_count() const { return int(tables_.size()); }
   std::uint64_t bytes() const;
 
  private:
+  // What a table is built from, beside the extinction.
+  struct Placement {
+    LightTableKind kind = LightTableKind::None;
+    vec3 axes[3] = {vec3(0.0f), vec3(0.0f), vec3(0.0f)};  // CSAT frame
+    vec3 light{0.0f};                                     // SSAT centre
+    float cell = 0.0f;
+    bool operator==(const Placement& o) const {
+      return kind == o.kind && axes[0] == o.axes[0] && axes[1] == o.axes[1] && axes[2] == o.axes[2] &&
+             light == o.light && cell == o.cell;
+    }
+  };
   std::vector<SummedAreaTable> tables_;
+  std::vector<Placement> placements_;  // per table
+  std::vector<std::uint64_t> ids_;     // per table
   std::vector<LightTableLookup> lookups_;
+  std::vector<std::uint64_t> light_table_ids_;  // per light (0: none)
+  std::uint64_t next_id_ = 1;
 };
 
 }  // namespace penumbra

@@ -4,9 +4,10 @@
 
 namespace penumbra {
 
-ShadowFilter make_shadow_filter(FilterKernel kernel, float width, float density_scale) {
+ShadowFilter make_shadow_filter(FilterKernel kernel, float width, float density_scale, float offset) {
   ShadowFilter f;
   f.density_scale = density_scale;
+  f.offset = offset * 0.5f * width;
   if (kernel == FilterKernel::Box) {
     f.half_width = 0.5f * width;
     return f;

@@ -23,10 +23,18 @@ struct ShadowFilter {
   int taps = 1;             // sub-patches per axis
   float weights[kMaxTaps] = {1.0f};  // per sub-patch along one axis, summing to 1
   float density_scale = 1.0f;        // multiplies the filtered optical depth
+  // How far toward the light the filtered volume starts, world units (0:
+  // at the sample, the paper's cuboid of eq. 10). A patch of full width at
+  // the sample reaches into the material of the surface the sample lies on;
+  // starting it farther leaves that material out (the self-shadowing
+  // mitigation of issue 22).
+  float offset = 0.0f;
 };
 
 // The filter for a box width (or, for the Gaussian, the box width of the same
 // variance) in world units.
-ShadowFilter make_shadow_filter(FilterKernel kernel, float width, float density_scale);
+// `offset`: in units of the filter's half-width (the box's half-width, or
+// for the Gaussian that of its box of equal variance).
+ShadowFilter make_shadow_filter(FilterKernel kernel, float width, float density_scale, float offset = 0.0f);
 
 }  // namespace penumbra

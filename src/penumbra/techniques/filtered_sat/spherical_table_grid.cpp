@@ -92,24 +92,19 @@ SphericalTableGrid fit_spherical_grid(const Box3& box, vec3 light, float cell) {
 }
 
 SummedAreaTable build_spherical_extinction_table(const RenderView& shadows, const SphericalTableGrid& grid,
-                                                 const std::string& what) {
+                                                 const std::string& what, int samples_per_axis) {
   SummedAreaTable table(grid.cells, what);
+  // Cells are about this wide (world units) at the middle distance.
+  const float width = grid.cell.z;
   with_sampler(shadows.volume, [&](const auto& sampler) {
     const ExtinctionField<std::decay_t<decltype(sampler)>> field{&shadows, sampler};
-    parallel_for(0, std::int64_t(grid.cells.y) * grid.cells.z, [&](std::int64_t first, std::int64_t last) {
-      for (std::int64_t row = first; row < last; ++row) {
-        const int j = int(row % grid.cells.y);
-        const int k = int(row / grid.cells.y);
-        const double theta0 = double(grid.lower.y) + double(grid.cell.y) * j;
-        const double measure =
-            double(grid.cell.x) * (std::cos(theta0) - std::cos(theta0 + grid.cell.y)) * double(grid.cell.z);
-        double* cells = table.cell_row(j, k);
-        for (int i = 0; i < grid.cells.x; ++i) {
-          const vec3 s = grid.lower + (vec3(i, j, k) + 0.5f) * grid.cell;
-          cells[i] = double(field(grid.world_from_spherical(s))) * measure;
-        }
-      }
-    });
+    fill_extinction_cells(
+        table, samples_per_axis, kRefineTolerance / width, field,
+        [&](vec3 g) { return grid.world_from_spherical(grid.lower + g * grid.cell); },
+        [&](int j, int) {
+          const double theta0 = double(grid.lower.y) + double(grid.cell.y) * j;
+          return double(grid.cell.x) * (std::cos(theta0) - std::cos(theta0 + grid.cell.y)) * double(grid.cell.z);
+        });
     return 0;
   });
   table.integrate();

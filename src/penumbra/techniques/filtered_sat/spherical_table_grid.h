@@ -52,6 +52,6 @@ SphericalTableGrid fit_spherical_grid(const Box3& box, vec3 light, float cell);
 // The SSAT: cell (i, j, k) holds sigma_t at its centre times its measure
 // dphi (cos theta_j - cos theta_j+1) dr. `what` names it in budget errors.
 SummedAreaTable build_spherical_extinction_table(const RenderView& shadows, const SphericalTableGrid& grid,
-                                                 const std::string& what);
+                                                 const std::string& what, int samples_per_axis = 1);
 
 }  // namespace penumbra

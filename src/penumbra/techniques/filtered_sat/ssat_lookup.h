@@ -36,6 +36,9 @@ PENUMBRA_HD inline float ssat_filtered_depth(const SummedAreaTableView& table, c
   const vec3 s = grid.spherical_from_world(p);
   const float radius = s.z;
   if (!(radius > 0.0f)) return 0.0f;
+  // The pyramid ends `offset` short of the sample, toward the light.
+  const float end = radius - filter.offset;
+  if (!(end > 0.0f)) return 0.0f;
   const float tangent_radius = radius * glm::sin(s.y);  // distance from the polar axis
   const float step = 2.0f * filter.half_width / float(filter.taps);
   double depth = 0.0, weight_sum = 0.0;
@@ -52,8 +55,8 @@ PENUMBRA_HD inline float ssat_filtered_depth(const SummedAreaTableView& table, c
       const float phi1 = polar ? s.x + kPi : s.x + glm::atan(u0 + step, tangent_radius);
       const double solid_angle = double(phi1 - phi0) * (double(glm::cos(theta0)) - double(glm::cos(theta1)));
       if (!(solid_angle > 0.0)) continue;
-      const double sum = ssat_prefix(table, grid, phi1, theta1, radius) - ssat_prefix(table, grid, phi0, theta1, radius) -
-                         ssat_prefix(table, grid, phi1, theta0, radius) + ssat_prefix(table, grid, phi0, theta0, radius);
+      const double sum = ssat_prefix(table, grid, phi1, theta1, end) - ssat_prefix(table, grid, phi0, theta1, end) -
+                         ssat_prefix(table, grid, phi1, theta0, end) + ssat_prefix(table, grid, phi0, theta0, end);
       const double w = double(filter.weights[i]) * double(filter.weights[j]);
       depth += w * sum / solid_angle;
       weight_sum += w;

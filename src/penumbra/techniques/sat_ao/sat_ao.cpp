@@ -14,8 +14,8 @@ namespace {
 class SatAo final : public Technique {
  public:
   void prepare(const Scene& scene, const ParameterValues& params) override {
-    const bool shared_changed = resources_.update(scene);
-    const bool table_rebuilt = table_.update(scene, resources_, shared_changed, params.number("sat_resolution"));
+    resources_.update(scene);
+    const bool table_rebuilt = table_.update(scene, resources_, params.number("sat_resolution"));
     if (table_rebuilt) {
       cache_.reset();
       ++rebuilds_;

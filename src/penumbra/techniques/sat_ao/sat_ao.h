@@ -17,8 +17,9 @@
 //   cache_resolution      that grid's size as a fraction of the data grid
 //   shadow_density_scale  multiplies the mean extinction
 // Passes
-//   prepare: the table when the data, TF, clip planes or resolution change
-//            (never for lights); with the cache, one occlusion grid, also
+//   prepare: the table when the data, the shadow TF's extinction, the clip
+//            planes or the resolution change (never for lights, floor planes
+//            or a render-only TF edit); with the cache, one occlusion grid, also
 //            rebuilt when the radius, density scale or cache resolution change
 //   render:  one ray-casting pass; per lit sample one cache read (or one
 //            box sum), shared by every light

@@ -23,10 +23,10 @@ TEST(SatAo, HomogeneousMediumGivesTheAnalyticOcclusion) {
   Scene scene = procedural_scene("slab", ivec3(32), 8);
   scene.set_transfer_function(testing::step_tf(0.0f, vec3(1.0f), 0.2f));
   SceneResources resources;
-  const bool changed = resources.update(scene);
+  resources.update(scene);
   VolumeAlignedTable table("test");
-  ASSERT_TRUE(table.update(scene, resources, changed, 1.0));
-  EXPECT_FALSE(table.update(scene, resources, false, 1.0)) << "nothing changed";
+  ASSERT_TRUE(table.update(scene, resources, 1.0));
+  EXPECT_FALSE(table.update(scene, resources, 1.0)) << "nothing changed";
   const float sigma = -std::log(0.8f);
   const AmbientOcclusion ao{table.view(), table.grid(), 5.0f, 1.0f};
   EXPECT_NEAR(ao.occlusion(vec3(1.3f, -2.0f, 0.7f)), std::exp(-sigma * 5.0f), 1e-5f);

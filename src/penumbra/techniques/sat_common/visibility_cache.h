@@ -9,6 +9,7 @@
 #include "penumbra/volume/volume.h"
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 namespace penumbra {
@@ -37,7 +38,8 @@ template <class Visibility> Volume build_visibility_cache(const Box3& box, ivec3
 
 // One cache per light, and the parameters they were built with, for the SAT
 // techniques' optional shadow cache. A light without a cache (an environment
-// light, or one the technique has no table for) has an empty view.
+// light, or one the technique has no table for) has an empty view. Caches are
+// rebuilt per light: a light whose own inputs did not change keeps its cache.
 class LightVisibilityCaches {
  public:
   // Built, and for these parameters (the caller leaves out those that only
@@ -46,19 +48,36 @@ class LightVisibilityCaches {
   bool built() const { return built_; }
 
   // For each light i < light_count with has_cache(i): a cache of `dims` over
-  // `box` holding visibility(i, world).
-  template <class HasCache, class Visibility>
-  void build(std::size_t light_count, const Box3& box, ivec3 dims, const ParameterValues& params,
-             const HasCache& has_cache, const Visibility& visibility) {
-    clear();  // before building: the old caches' memory is free for the new ones
+  // `box` holding visibility(i, world), rebuilt when the parameters, the box
+  // or the dims changed, when the light had none, or when stale(i) (its own
+  // inputs changed). Caches of lights without one are released first, then
+  // each stale cache before its replacement is built. Returns how many
+  // caches it built.
+  template <class HasCache, class Stale, class Visibility>
+  int update(std::size_t light_count, const Box3& box, ivec3 dims, const ParameterValues& params,
+             const HasCache& has_cache, const Stale& stale, const Visibility& visibility) {
+    const bool all = !built_ || !(params == params_) || dims != dims_ || box.lower != box_.lower ||
+                     box.upper != box_.upper;
+    caches_.resize(light_count);
+    for (std::size_t i = 0; i < light_count; ++i) {
+      if (!has_cache(i)) caches_[i].reset();
+    }
+    int count = 0;
+    for (std::size_t i = 0; i < light_count; ++i) {
+      if (!has_cache(i) || (caches_[i] && !all && !stale(i))) continue;
+      caches_[i].reset();  // free the old cache first
+      caches_[i].emplace(build_visibility_cache(box, dims, [&](vec3 p) { return visibility(i, p); }));
+      ++count;
+    }
     views_.assign(light_count, VolumeView{});
     for (std::size_t i = 0; i < light_count; ++i) {
-      if (!has_cache(i)) continue;
-      caches_.push_back(build_visibility_cache(box, dims, [&](vec3 p) { return visibility(i, p); }));
-      views_[i] = caches_.back().view();
+      if (caches_[i]) views_[i] = caches_[i]->view();
     }
     built_ = true;
     params_ = params;
+    dims_ = dims;
+    box_ = box;
+    return count;
   }
 
   void clear() {
@@ -70,15 +89,17 @@ class LightVisibilityCaches {
   const VolumeView* views() const { return views_.data(); }
   std::uint64_t bytes() const {
     std::uint64_t total = 0;
-    for (const Volume& c : caches_) total += c.total_bytes();
+    for (const auto& c : caches_) total += c ? c->total_bytes() : 0;
     return total;
   }
 
  private:
-  std::vector<Volume> caches_;
-  std::vector<VolumeView> views_;  // one per light
+  std::vector<std::optional<Volume>> caches_;  // one per light
+  std::vector<VolumeView> views_;              // one per light
   bool built_ = false;
   ParameterValues params_;
+  ivec3 dims_{0};
+  Box3 box_;
 };
 
 }  // namespace penumbra

@@ -3,11 +3,13 @@
 // compare against (Schlegel et al. 2011, "Extinction-based shading and
 // illumination in GPU volume ray-casting", IEEE TVCG 17(12)): one table on
 // the world axes over the volume box, independent of the lights, rebuilt
-// when the data (or time step), the shadow TF, the clip planes or the
-// resolution change.
+// when the data (or time step), the shadow TF's extinction, the clip planes
+// or the resolution change (not for a floor plane, a light or a render-only
+// TF edit).
 #include "penumbra/render/scene_resources.h"
 #include "penumbra/techniques/sat_common/cartesian_table_grid.h"
 #include "penumbra/techniques/sat_common/summed_area_table.h"
+#include "penumbra/techniques/sat_common/table_dependencies.h"
 
 #include <cstdint>
 #include <string>
@@ -18,9 +20,9 @@ class VolumeAlignedTable {
  public:
   explicit VolumeAlignedTable(std::string what) : what_(std::move(what)) {}
 
-  // `shared_changed`: what SceneResources::update returned. `resolution`:
-  // cells per voxel of the smallest spacing. Returns true when it rebuilt.
-  bool update(const Scene& scene, const SceneResources& resources, bool shared_changed, double resolution);
+  // `resolution`: cells per voxel of the smallest spacing (resources
+  // updated first). Returns true when it rebuilt.
+  bool update(const Scene& scene, const SceneResources& resources, double resolution);
 
   const CartesianTableGrid& grid() const { return grid_; }
   SummedAreaTableView view() const { return table_.view(); }
@@ -29,7 +31,7 @@ class VolumeAlignedTable {
  private:
   std::string what_;
   bool built_ = false;
-  std::uint64_t geometry_version_ = 0;
+  ExtinctionInputs inputs_;
   double resolution_ = 0.0;
   CartesianTableGrid grid_;
   SummedAreaTable table_;
