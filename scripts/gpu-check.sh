@@ -33,7 +33,7 @@ timeout 300 "$bin/penumbra_tests" --gtest_filter='Device*:CudaDevice*' --gtest_b
 tests=$?
 
 echo "== bench: 1024x1024, 512^3 marschner-lobb (scenes/gpu-bench-512.json), 10 frames each"
-techniques=(emission-absorption phong shadow-rays shadow-map deep-shadow-map cssm)
+techniques=(emission-absorption phong shadow-rays shadow-map deep-shadow-map cssm filtered-sat sat-ao cone-shadows)
 args=()
 for t in "${techniques[@]}"; do args+=(--technique "$t"); done
 json=$(timeout 240 "$bin/penumbra" --device cuda bench "$scenes/gpu-bench-512.json" "${args[@]}" --frames 10)

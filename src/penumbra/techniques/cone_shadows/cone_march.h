@@ -17,6 +17,12 @@ struct ConeMarch {
   float step = 1.0f;        // world units
   float density_scale = 1.0f;
 
+  template <class Mirror> ConeMarch on_device(Mirror& m) const {
+    ConeMarch d = *this;
+    d.table = table.on_device(m);
+    return d;
+  }
+
   // Optical depth from p toward a light `distance` away along unit `to_light`.
   PENUMBRA_HD float optical_depth(vec3 p, vec3 to_light, float distance) const {
     const Interval chord = intersect_box(Ray{p, to_light}, box, 0.0f, distance);
@@ -45,6 +51,10 @@ struct ConeMarch {
 struct CachedConeMarch {
   ConeMarch direct;
   const VolumeView* caches = nullptr;  // per light; data == nullptr: no cache
+
+  template <class Mirror> CachedConeMarch on_device(Mirror& m) const {
+    return CachedConeMarch{direct.on_device(m), m.volumes(caches, m.light_count(), "the shadow caches")};
+  }
   PENUMBRA_HD vec3 operator()(int light, vec3 p, const LightSample& ls) const {
     return lanes<ScalarLanes>(light, p, ls, true);
   }
@@ -57,5 +67,7 @@ struct CachedConeMarch {
 
 PENUMBRA_PACKET_LIGHTING(ScatteringLighting<ConeMarch>);
 PENUMBRA_PACKET_LIGHTING(ScatteringLighting<CachedConeMarch>);
+PENUMBRA_DEVICE_LIGHTING(ScatteringLighting<ConeMarch>);
+PENUMBRA_DEVICE_LIGHTING(ScatteringLighting<CachedConeMarch>);
 
 }  // namespace penumbra

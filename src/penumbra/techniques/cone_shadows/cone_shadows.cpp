@@ -50,7 +50,8 @@ class ConeShadows final : public Technique {
   }
 
   void render(const Scene& scene, Image& image, RenderStats* stats) override {
-    const RenderView view = resources_.view(scene);
+    RenderView view = resources_.view(scene);
+    view.structures = rebuilds_;  // the tables' and caches' version, for device mirrors
     const Shading shading = scene.material().shading;
     if (caches_.built()) {
       const CachedConeMarch cached{cone_, caches_.views()};

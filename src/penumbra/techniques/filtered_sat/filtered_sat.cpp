@@ -67,7 +67,8 @@ class FilteredSat final : public Technique {
   }
 
   void render(const Scene& scene, Image& image, RenderStats* stats) override {
-    const RenderView view = resources_.view(scene);
+    RenderView view = resources_.view(scene);
+    view.structures = rebuilds_;  // the tables' and caches' version, for device mirrors
     const Shading shading = scene.material().shading;
     const FilteredVisibility direct{tables_.lookups().data(), filter_};
     if (caches_.built()) {

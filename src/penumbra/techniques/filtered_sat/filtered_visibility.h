@@ -8,11 +8,20 @@
 #include "penumbra/volume/volume_sampler.h"
 #include "penumbra/volume/volume_view.h"
 
+#include <vector>
+
 namespace penumbra {
 
 struct FilteredVisibility {
   const LightTableLookup* lights = nullptr;
   ShadowFilter filter;
+
+  // The device copy (backends/device.h): each light's table mirrored.
+  template <class Mirror> FilteredVisibility on_device(Mirror& m) const {
+    std::vector<LightTableLookup> copy(lights, lights + m.light_count());
+    for (LightTableLookup& light : copy) light.table = light.table.on_device(m);
+    return FilteredVisibility{m.frame(copy, "the light tables"), filter};
+  }
 
   PENUMBRA_HD float transmittance(int light, vec3 p) const {
     return exp_nonpositive(-filter.density_scale * filtered_optical_depth(lights[light], filter, p));
@@ -62,6 +71,11 @@ struct CachedFilteredVisibility {
   Box3 box;
   float tolerance = 1.0f;
 
+  template <class Mirror> CachedFilteredVisibility on_device(Mirror& m) const {
+    return CachedFilteredVisibility{direct.on_device(m), m.volumes(caches, m.light_count(), "the shadow caches"), box,
+                                    tolerance};
+  }
+
   PENUMBRA_HD vec3 operator()(int light, vec3 p, const LightSample& ls) const {
     return lanes<ScalarLanes>(light, p, ls, true);
   }
@@ -89,5 +103,7 @@ struct CachedFilteredVisibility {
 
 PENUMBRA_PACKET_LIGHTING(ScatteringLighting<FilteredVisibility>);
 PENUMBRA_PACKET_LIGHTING(ScatteringLighting<CachedFilteredVisibility>);
+PENUMBRA_DEVICE_LIGHTING(ScatteringLighting<FilteredVisibility>);
+PENUMBRA_DEVICE_LIGHTING(ScatteringLighting<CachedFilteredVisibility>);
 
 }  // namespace penumbra

@@ -14,6 +14,12 @@ struct AmbientOcclusion {
   float radius = 1.0f;      // world units
   float density_scale = 1.0f;
 
+  template <class Mirror> AmbientOcclusion on_device(Mirror& m) const {
+    AmbientOcclusion d = *this;
+    d.table = table.on_device(m);
+    return d;
+  }
+
   // exp(-sigma_mean R) with sigma_mean the mean extinction of the cube
   // [p - R, p + R]^3 (outside the volume counts as empty).
   PENUMBRA_HD float occlusion(vec3 p) const {
@@ -31,6 +37,10 @@ struct CachedAmbientOcclusion {
   AmbientOcclusion direct;
   VolumeView cache;
   Box3 box;
+
+  template <class Mirror> CachedAmbientOcclusion on_device(Mirror& m) const {
+    return CachedAmbientOcclusion{direct.on_device(m), m.volume(cache, false, "the occlusion cache"), box};
+  }
   PENUMBRA_HD vec3 operator()(int light, vec3 p, const LightSample& ls) const {
     return lanes<ScalarLanes>(light, p, ls, true);
   }
@@ -43,5 +53,7 @@ struct CachedAmbientOcclusion {
 
 PENUMBRA_PACKET_LIGHTING(ScatteringLighting<AmbientOcclusion>);
 PENUMBRA_PACKET_LIGHTING(ScatteringLighting<CachedAmbientOcclusion>);
+PENUMBRA_DEVICE_LIGHTING(ScatteringLighting<AmbientOcclusion>);
+PENUMBRA_DEVICE_LIGHTING(ScatteringLighting<CachedAmbientOcclusion>);
 
 }  // namespace penumbra

@@ -41,7 +41,8 @@ class SatAo final : public Technique {
   }
 
   void render(const Scene& scene, Image& image, RenderStats* stats) override {
-    const RenderView view = resources_.view(scene);
+    RenderView view = resources_.view(scene);
+    view.structures = rebuilds_;  // the tables' and caches' version, for device mirrors
     const Shading shading = scene.material().shading;
     if (cache_) {
       const CachedAmbientOcclusion cached{occlusion_, cache_->view(), view.box};

@@ -27,6 +27,13 @@ struct SummedAreaTableView {
   const double* nodes = nullptr;
   ivec3 cells{0};  // nodes per axis: cells + 1
 
+  // The device copy (backends/device.h): the nodes mirrored.
+  template <class Mirror> SummedAreaTableView on_device(Mirror& m) const {
+    SummedAreaTableView d = *this;
+    if (nodes) d.nodes = m.structure(nodes, std::size_t(node_index(cells.x, cells.y, cells.z)) + 1, "a summed-area table");
+    return d;
+  }
+
   PENUMBRA_HD std::int64_t node_index(int i, int j, int k) const {
     return i + std::int64_t(cells.x + 1) * (j + std::int64_t(cells.y + 1) * k);
   }
