@@ -309,8 +309,12 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
               // the medium there is sampled a quarter of the slab back toward
               // the light, so a surface facing the light is not darkened by
               // the slab it lies in (taking the sample's own extinction would
-              // treat every slab as a plate across the view). Mesh samples
-              // take the incoming light as it is, as in the paper.
+              // treat every slab as a plate across the view). Mesh samples get
+              // the same within-slab correction from their own (homogeneous
+              // within a layer) extinction over the covered length: lit by the
+              // light entering the slab unattenuated, as in the paper, a dense
+              // mesh came out too bright and striped with a brightness that
+              // grew with the slab distance (issue 23).
               auto composite = [&](vec4 sample, const float* half_depth, vec3 pos, vec3 index, float v,
                                    const ScatteringLighting<BufferVisibility>& lighting) {
                 if (!(sample.a > 0.0f)) return;
@@ -340,12 +344,16 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
                   volume_half[l] = sigma * half_path;
                 }
               }
+              float mesh_half[kMaxLights];
+              if (mesh_sample.a > 0.0f) {
+                for (int l = 0; l < light_count; ++l) mesh_half[l] = 0.5f * mesh_shadow * light_path[std::size_t(l)];
+              }
               if (cover.middle < zs) {
-                composite(mesh_sample, nullptr, mesh_pos, vec3(0.0f), 0.0f, mesh_light);
+                composite(mesh_sample, mesh_half, mesh_pos, vec3(0.0f), 0.0f, mesh_light);
                 composite(volume_sample, volume_half, volume_pos, volume_index, value, volume_light);
               } else {
                 composite(volume_sample, volume_half, volume_pos, volume_index, value, volume_light);
-                composite(mesh_sample, nullptr, mesh_pos, vec3(0.0f), 0.0f, mesh_light);
+                composite(mesh_sample, mesh_half, mesh_pos, vec3(0.0f), 0.0f, mesh_light);
               }
             }
             // (4) the light leaving this slab toward the next.
