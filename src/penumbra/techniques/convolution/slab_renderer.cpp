@@ -175,12 +175,18 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
   std::vector<SlabKernelBuilder> kernels;
   std::vector<float> light_path;  // world length of light path per slab
   std::vector<vec3> light_travel;  // unit direction the light travels
+  // Texels per world unit of lateral offset at the middle of the slabs (for
+  // the kernels' interpolation correction, light_propagation.h).
+  const float texels_per_unit =
+      slab_mapping(SlabFrame{cam, width, height, e}, 0.5f * (z_front + z_back)).pixels_per_unit;
   for (int l = 0; l < light_count; ++l) {
     const GaussianLight& g = lights[std::size_t(l)];
     light_travel.push_back(glm::normalize(cam.forward + g.mu.x * cam.right + g.mu.y * cam.up));
-    kernels.emplace_back(settings_.kernel, settings_.kernel_samples, e * lights[std::size_t(l)].mu,
-                         d1 * e * lights[std::size_t(l)].covariance,
-                         mix_bits(settings_.seed * 0x2545f4914f6cdd1dULL + std::uint64_t(l)));
+    const std::uint64_t seed = mix_bits(settings_.seed * 0x2545f4914f6cdd1dULL + std::uint64_t(l));
+    const vec2 mean = e * g.mu;
+    const glm::mat2 covariance = interpolation_corrected_covariance(
+        settings_.kernel, settings_.kernel_samples, mean, d1 * e * g.covariance, seed, texels_per_unit);
+    kernels.emplace_back(settings_.kernel, settings_.kernel_samples, mean, covariance, seed);
     light_path.push_back(e / lights[std::size_t(l)].cos_view);
   }
   const SlabFrame frame{cam, width, height, e};
