@@ -239,6 +239,46 @@ TEST(ConvolutionMeshes, DenseMeshBoxIsLitLikeTheSameVolume) {
   EXPECT_NEAR(means[0], means[1], 0.02f);
 }
 
+// The guard band (issue 23): dense spheres at and beyond the image's left
+// border (x = -32 of a 64-unit, 64-pixel view) under a light travelling +x at
+// 45 degrees shadow the floor 20 units below inside the view. A sphere
+// straddling the border casts its round shadow and nothing else; with
+// clamp-to-edge buffers (guard_band off) the border column's occlusion is
+// repeated outward and shadows a streak of floor between the border and
+// that shadow. A sphere wholly outside the view (within the band) shadows
+// the floor too, which without the band it cannot.
+TEST(ConvolutionMeshes, GuardBandShadowsFromBeyondTheBorder) {
+  constexpr int kImage = 64;
+  constexpr float kHeight = 64.0f;
+  Scene scene = mesh_scene(kImage, kHeight, 0.0f);
+  scene.set_meshes({homogeneous_sphere(3.0f, vec3(-32.0f, 0.0f, 0.0f), 0.99f),
+                    homogeneous_sphere(2.5f, vec3(-35.0f, 14.0f, 0.0f), 0.99f)});
+  Light light;
+  light.direction = glm::normalize(vec3(1.0f, 0.0f, -1.0f));
+  scene.set_lights({light});
+  scene.set_planes({Plane{vec3(0.0f, 0.0f, -20.0f), vec3(0.0f, 0.0f, 1.0f), vec3(0.8f)}});
+  const float lit = 0.8f * std::sqrt(0.5f);
+  auto floor_at = [&](const Image& im, float wx, float wy) {
+    const int x = int(std::floor(wx + 0.5f * kHeight)), y = int(std::floor(0.5f * kHeight - wy));
+    return im.at(x, y).r;
+  };
+  const Image with = render_with(scene, "convolution");
+  const Image without = render_with(scene, "convolution", {{"guard_band", false}});
+  testing::save_test_image(with, "conv_mesh_guard_band.png");
+  testing::save_test_image(without, "conv_mesh_no_guard_band.png");
+  const float streak_with = floor_at(with, -22.0f, 0.0f), streak_without = floor_at(without, -22.0f, 0.0f);
+  const float shadow_with = floor_at(with, -12.0f, 0.0f);
+  const float outside_with = floor_at(with, -15.0f, 14.0f), outside_without = floor_at(without, -15.0f, 14.0f);
+  std::printf("guard band: streak floor %.3f (without %.3f), shadow %.3f, outside sphere's shadow %.3f (without %.3f),"
+              " lit %.3f\n",
+              streak_with, streak_without, shadow_with, outside_with, outside_without, lit);
+  EXPECT_GT(streak_with, 0.95f * lit);
+  EXPECT_LT(streak_without, 0.5f * lit);
+  EXPECT_LT(shadow_with, 0.2f * lit);
+  EXPECT_LT(outside_with, 0.3f * lit);
+  EXPECT_GT(outside_without, 0.95f * lit);
+}
+
 // A perspective camera inside a sphere sees its medium on every pixel, up to
 // the sphere's surface one radius away.
 TEST(ConvolutionMeshes, CameraInsideAMeshSeesItsMediumEverywhere) {
