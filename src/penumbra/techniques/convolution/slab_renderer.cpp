@@ -156,7 +156,7 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
   }
   view.width = image_width + 2 * guard;
   view.height = image_height + 2 * guard;
-  view.camera.half_height *= float(view.height) / float(image_height);
+  if (guard > 0) view.camera.half_height *= float(view.height) / float(image_height);
   const int width = view.width, height = view.height;
 
   const std::size_t pixels = std::size_t(width) * std::size_t(height);
@@ -165,7 +165,7 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
   const int ldi_shift = max_guard - guard;  // LDI pixel of this frame's pixel (0, 0)
   if (!meshes_.empty()) {
     CameraView ldi_camera = cam;
-    ldi_camera.half_height *= float(image_height + 2 * max_guard) / float(height);
+    if (max_guard > guard) ldi_camera.half_height *= float(image_height + 2 * max_guard) / float(height);
     meshes_.build_ldi(ldi_camera, image_width + 2 * max_guard, image_height + 2 * max_guard);
   }
   const MeshesView meshes = meshes_.view();
