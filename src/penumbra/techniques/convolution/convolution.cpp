@@ -18,6 +18,7 @@ class Convolution final : public Technique {
     s.light.rotation_deg = float(params.number("light_rotation_deg"));
     s.seed = std::uint64_t(params.integer("seed"));
     s.preintegrated = params.flag("preintegrated");
+    s.guard_band = params.flag("guard_band");
     renderer_.prepare(scene, s);
   }
 
@@ -53,6 +54,8 @@ TechniqueInfo convolution_info() {
           ParameterSpec::integer("seed", 1, 0, 1 << 30, "seed of the random kernel rotations"),
           ParameterSpec::flag("preintegrated", false,
                               "preintegrated compositing of the volume between slabs (Engel et al. 2001)"),
+          ParameterSpec::flag("guard_band", true,
+                              "sweep the light buffers over a band around the image, so occluders just outside it shadow"),
       }},
       [] { return std::make_unique<Convolution>(); },
       /*draws_meshes=*/true};

@@ -149,6 +149,20 @@ PENUMBRA_HD inline float convolve_texel_mapped(const SlabFrame& f, const SlabMap
   return sum;
 }
 
+// Bilinear reads blur too: a read at fractional offset f is a two-tap kernel
+// (1 - f, f) of variance f (1 - f) texels^2 per axis, added every slab, so an
+// uncorrected penumbra is wider the coarser the image (issue 23: 5.8 / 6.7 /
+// 9.9 units at 256^2 / 128^2 / 64^2 for an analytic 5.47). The kernel's
+// covariance that, with its own taps' interpolation variance (averaged over
+// slabs and per-pixel rotations, at `pixels_per_unit` texels per world unit
+// of lateral offset) added, gives `covariance`. Exact for orthographic
+// cameras, whose texel-to-texel map is a pure shift; for perspective ones it
+// uses the scale at the depth passed in. Each principal variance keeps at
+// least a tenth of its value (a kernel narrower than the interpolation cannot
+// be corrected further; zero-variance lights are read sharp and need none).
+glm::mat2 interpolation_corrected_covariance(SlabKernelType type, int samples, vec2 mean, const glm::mat2& covariance,
+                                             std::uint64_t seed, float pixels_per_unit);
+
 // The whole buffer for the slab at `depth` (parallel over rows).
 void convolve_slab(const SlabFrame& frame, const SlabKernel& kernel, const float* previous, float* incoming,
                    float depth);

@@ -29,6 +29,7 @@ struct PixelState {
   float z_plane = kInfinity;
   int plane = -1;
   bool done = false;  // reached an opaque plane
+  bool guard = false;  // in the guard band: attenuates light, is not shown
   float previous_value = std::numeric_limits<float>::quiet_NaN();  // preintegration: the last volume sample
   PixelLayers layers;
 };
@@ -92,11 +93,11 @@ void SlabRenderer::prepare(const Scene& scene, const SlabSettings& settings) {
 }
 
 void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) {
-  const RenderView view = resources_.view(scene);
+  RenderView view = resources_.view(scene);
   const RenderView shadow = resources_.shadow_view(scene);
-  const int width = view.width, height = view.height;
-  if (image.width() != width || image.height() != height) image = Image(width, height);
-  const CameraView& cam = view.camera;
+  const int image_width = view.width, image_height = view.height;
+  if (image.width() != image_width || image.height() != image_height) image = Image(image_width, image_height);
+  const CameraView& cam = view.camera;  // widened by the guard band below
   Box3 box = view.box;
   if (!meshes_.empty()) {
     box.lower = glm::min(box.lower, meshes_.world_bounds().lower);
@@ -127,10 +128,46 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
   const float d1 = settings_.optimal_distance_voxels > 0.0f ? settings_.optimal_distance_voxels * voxel
                                                             : glm::max(0.25f * box_extent, e);
 
+  // A guard band around the image (issue 23): the slabs are swept over a
+  // frame `guard` pixels wider on every side (the same pixel size and
+  // centre: half_height grows with the pixel count), so occluders just
+  // outside the view still shadow what it shows, instead of the light
+  // buffers' clamp-to-edge repeating the border pixels (a false streak where
+  // a mesh touches the border). Its width is what the light can travel
+  // across the scene's depth, the mean drift |mu| D plus 3 standard
+  // deviations of its accumulated blur sqrt(d1 sigma^2 D), at the pixel size
+  // of the nearest depth, plus 2 texels of interpolation support; capped at
+  // an eighth of the image per side (at most 1.56 x the pixels). Guard pixels
+  // only attenuate light: they are not shaded.
+  // The meshes' layered depth image covers the widest band (the cap) whatever
+  // the lights, so moving a light does not rebuild it.
+  const int max_guard = settings_.guard_band ? glm::max(2, glm::max(image_width, image_height) / 8) : 0;
+  int guard = 0;
+  if (light_count > 0 && settings_.guard_band) {
+    const float near_depth = cam.orthographic ? z_front : glm::max(z_front, 1e-3f);
+    const float texels_near = slab_mapping(SlabFrame{cam, image_width, image_height, 0.0f}, near_depth).pixels_per_unit;
+    float footprint = 0.0f;
+    for (const GaussianLight& g : lights) {
+      const float var = principal_axes(g.covariance).var_x;
+      footprint = glm::max(footprint, glm::length(g.mu) * box_extent + 3.0f * std::sqrt(d1 * var * box_extent));
+    }
+    const float wanted = std::ceil(glm::min(footprint * texels_near, 1e6f)) + 2.0f;
+    guard = int(glm::min(wanted, float(max_guard)));
+  }
+  view.width = image_width + 2 * guard;
+  view.height = image_height + 2 * guard;
+  if (guard > 0) view.camera.half_height *= float(view.height) / float(image_height);
+  const int width = view.width, height = view.height;
+
   const std::size_t pixels = std::size_t(width) * std::size_t(height);
   check_memory_budget("convolution buffers",
                       checked_product({pixels, 2 * std::uint64_t(light_count) * sizeof(float) + sizeof(PixelState)}));
-  if (!meshes_.empty()) meshes_.build_ldi(cam, width, height);
+  const int ldi_shift = max_guard - guard;  // LDI pixel of this frame's pixel (0, 0)
+  if (!meshes_.empty()) {
+    CameraView ldi_camera = cam;
+    if (max_guard > guard) ldi_camera.half_height *= float(image_height + 2 * max_guard) / float(height);
+    meshes_.build_ldi(ldi_camera, image_width + 2 * max_guard, image_height + 2 * max_guard);
+  }
   const MeshesView meshes = meshes_.view();
   const bool has_meshes = meshes.count > 0;
   if (settings_.preintegrated) preintegration_.update(view.tf, e);
@@ -148,6 +185,7 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
         const Ray ray = cam.pixel_ray(float(x) + 0.5f, float(y) + 0.5f, width, height);
         p.ray_dir = ray.direction;
         p.ray_cos = glm::dot(ray.direction, cam.forward);
+        p.guard = x < guard || y < guard || x >= width - guard || y >= height - guard;
         float t_plane = kInfinity;
         p.plane = nearest_plane(view, ray, kInfinity, t_plane);
         if (p.plane >= 0) p.z_plane = t_plane * p.ray_cos;
@@ -156,7 +194,7 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
           p.z_in = in.t0 * p.ray_cos;
           p.z_out = in.t1 * p.ray_cos;
         }
-        if (has_meshes) p.layers = start_layers(meshes.ldi, x, int(y));
+        if (has_meshes) p.layers = start_layers(meshes.ldi, x + ldi_shift, int(y) + ldi_shift);
       }
     }
   });
@@ -175,12 +213,18 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
   std::vector<SlabKernelBuilder> kernels;
   std::vector<float> light_path;  // world length of light path per slab
   std::vector<vec3> light_travel;  // unit direction the light travels
+  // Texels per world unit of lateral offset at the middle of the slabs (for
+  // the kernels' interpolation correction, light_propagation.h).
+  const float texels_per_unit =
+      slab_mapping(SlabFrame{cam, width, height, e}, 0.5f * (z_front + z_back)).pixels_per_unit;
   for (int l = 0; l < light_count; ++l) {
     const GaussianLight& g = lights[std::size_t(l)];
     light_travel.push_back(glm::normalize(cam.forward + g.mu.x * cam.right + g.mu.y * cam.up));
-    kernels.emplace_back(settings_.kernel, settings_.kernel_samples, e * lights[std::size_t(l)].mu,
-                         d1 * e * lights[std::size_t(l)].covariance,
-                         mix_bits(settings_.seed * 0x2545f4914f6cdd1dULL + std::uint64_t(l)));
+    const std::uint64_t seed = mix_bits(settings_.seed * 0x2545f4914f6cdd1dULL + std::uint64_t(l));
+    const vec2 mean = e * g.mu;
+    const glm::mat2 covariance = interpolation_corrected_covariance(
+        settings_.kernel, settings_.kernel_samples, mean, d1 * e * g.covariance, seed, texels_per_unit);
+    kernels.emplace_back(settings_.kernel, settings_.kernel_samples, mean, covariance, seed);
     light_path.push_back(e / lights[std::size_t(l)].cos_view);
   }
   const SlabFrame frame{cam, width, height, e};
@@ -226,7 +270,7 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
             PixelState& p = px[i];
             if (p.done) continue;  // behind an opaque plane: nothing of this pixel is left to see or to shadow
             const bool plane_here = p.plane >= 0 && p.z_plane < z1;
-            const bool shading = p.transmittance > min_transmittance;
+            const bool shading = !p.guard && p.transmittance > min_transmittance;
 
             // The volume: the part of the slab inside the box and clip planes,
             // sampled at its middle (DESIGN-NOTES "Sampling": segments sum to
@@ -309,8 +353,12 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
               // the medium there is sampled a quarter of the slab back toward
               // the light, so a surface facing the light is not darkened by
               // the slab it lies in (taking the sample's own extinction would
-              // treat every slab as a plate across the view). Mesh samples
-              // take the incoming light as it is, as in the paper.
+              // treat every slab as a plate across the view). Mesh samples get
+              // the same within-slab correction from their own (homogeneous
+              // within a layer) extinction over the covered length: lit by the
+              // light entering the slab unattenuated, as in the paper, a dense
+              // mesh came out too bright and striped with a brightness that
+              // grew with the slab distance (issue 23).
               auto composite = [&](vec4 sample, const float* half_depth, vec3 pos, vec3 index, float v,
                                    const ScatteringLighting<BufferVisibility>& lighting) {
                 if (!(sample.a > 0.0f)) return;
@@ -340,12 +388,16 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
                   volume_half[l] = sigma * half_path;
                 }
               }
+              float mesh_half[kMaxLights];
+              if (mesh_sample.a > 0.0f) {
+                for (int l = 0; l < light_count; ++l) mesh_half[l] = 0.5f * mesh_shadow * light_path[std::size_t(l)];
+              }
               if (cover.middle < zs) {
-                composite(mesh_sample, nullptr, mesh_pos, vec3(0.0f), 0.0f, mesh_light);
+                composite(mesh_sample, mesh_half, mesh_pos, vec3(0.0f), 0.0f, mesh_light);
                 composite(volume_sample, volume_half, volume_pos, volume_index, value, volume_light);
               } else {
                 composite(volume_sample, volume_half, volume_pos, volume_index, value, volume_light);
-                composite(mesh_sample, nullptr, mesh_pos, vec3(0.0f), 0.0f, mesh_light);
+                composite(mesh_sample, mesh_half, mesh_pos, vec3(0.0f), 0.0f, mesh_light);
               }
             }
             // (4) the light leaving this slab toward the next.
@@ -378,6 +430,7 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
       for (int x = 0; x < width; ++x) {
         const std::size_t i = std::size_t(x) + std::size_t(width) * std::size_t(y);
         PixelState& p = px[i];
+        if (p.guard) continue;
         if (!p.done && p.plane >= 0) {
           for (std::size_t s = 0; s < slot_of.size(); ++s) {
             if (slot_of[s] >= 0) vis[s] = light_count > 0 && slabs > 0 ? vec3(buffer(slot_of[s], current)[i]) : vec3(1.0f);
@@ -386,7 +439,7 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
         }
         vec4 out(p.color, 1.0f - p.transmittance);
         if (!p.done) out = vec4(p.color + p.transmittance * view.background, 1.0f - p.transmittance);
-        image.data()[i] = out;
+        image.data()[std::size_t(x - guard) + std::size_t(image_width) * std::size_t(y - guard)] = out;
       }
     }
   });

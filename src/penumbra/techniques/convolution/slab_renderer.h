@@ -51,6 +51,7 @@ struct SlabSettings {
   LightOverride light;
   std::uint64_t seed = 1;
   bool preintegrated = false;
+  bool guard_band = true;  // light buffers over a band around the image (slab_renderer.cpp)
 };
 
 class SlabRenderer {
