@@ -43,6 +43,19 @@ Scene repository_scene(const std::string& relative_path, int image_size) {
   return scene;
 }
 
+Light directional_light(vec3 direction) {
+  Light l;
+  l.direction = glm::normalize(direction);
+  return l;
+}
+
+Light point_light(vec3 position) {
+  Light l;
+  l.type = LightType::Point;
+  l.position = position;
+  return l;
+}
+
 Scene lit_spheres(int image_size) {
   Scene scene = procedural_scene("spheres", ivec3(48), image_size);
   TransferFunction tf({{0.0f, vec3(1.0f, 0.6f, 0.3f), 0.0f},

@@ -20,6 +20,11 @@ TransferFunction step_tf(float lo, vec3 color, float alpha);
 
 // The 48^3 spheres with a translucent orange-to-white TF, one directional
 // light from the upper front and a little ambient.
+// A unit-intensity directional light travelling along `direction`
+// (normalised), and a unit-intensity point light at `position`.
+Light directional_light(vec3 direction);
+Light point_light(vec3 position);
+
 Scene lit_spheres(int image_size = 48);
 
 // The scene with an opaque grey floor plane 8 units below the volume's box.

@@ -4,6 +4,8 @@
 // texels about a pixel wide across the light.
 #include "penumbra/techniques/ipsvi/cache_fit.h"
 
+#include "test_scene.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -38,18 +40,8 @@ Camera zoomed(float fov_deg) {
   return camera;
 }
 
-Light directional(vec3 d) {
-  Light l;
-  l.direction = glm::normalize(d);
-  return l;
-}
-
-Light point(vec3 position) {
-  Light l;
-  l.type = LightType::Point;
-  l.position = position;
-  return l;
-}
+Light directional(vec3 direction) { return testing::directional_light(direction); }
+Light point(vec3 position) { return testing::point_light(position); }
 
 TEST(CacheFit, CoversWhatTheCameraSeesAndKeepsItsSizeWhenZooming) {
   for (const Light& light : {directional(vec3(1.0f, 0.2f, -0.3f)), directional(vec3(0.3f, -0.5f, -1.0f)),

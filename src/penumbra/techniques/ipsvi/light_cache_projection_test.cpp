@@ -4,6 +4,8 @@
 
 #include "penumbra/base/error.h"
 
+#include "test_scene.h"
+
 #include <gtest/gtest.h>
 
 namespace penumbra {
@@ -11,18 +13,8 @@ namespace {
 
 const Box3 kBox{vec3(-20.0f, -15.0f, -10.0f), vec3(20.0f, 15.0f, 10.0f)};
 
-Light directional(vec3 direction) {
-  Light l;
-  l.direction = glm::normalize(direction);
-  return l;
-}
-
-Light point(vec3 position) {
-  Light l;
-  l.type = LightType::Point;
-  l.position = position;
-  return l;
-}
+Light directional(vec3 direction) { return testing::directional_light(direction); }
+Light point(vec3 position) { return testing::point_light(position); }
 
 void expect_round_trip(const LightCacheProjection& p) {
   for (vec2 uv : {vec2(3.5f, 7.25f), vec2(0.5f * float(p.size)), vec2(float(p.size) - 2.0f, 1.5f)}) {

@@ -8,6 +8,8 @@
 
 #include "penumbra/base/rng.h"
 
+#include "test_scene.h"
+
 #include <gtest/gtest.h>
 
 #include <map>
@@ -90,18 +92,8 @@ int check_light_order(const CameraView& c, const Light& light, LightFlow expecte
   return checked;
 }
 
-Light point(vec3 position) {
-  Light l;
-  l.type = LightType::Point;
-  l.position = position;
-  return l;
-}
-
-Light directional(vec3 direction) {
-  Light l;
-  l.direction = glm::normalize(direction);
-  return l;
-}
+Light point(vec3 position) { return testing::point_light(position); }
+Light directional(vec3 direction) { return testing::directional_light(direction); }
 
 TEST(SweepPlan, PointLightInFrontOfTheCameraSweepsOutwardFromItsProjection) {
   const CameraView c = camera(false);
