@@ -1,5 +1,6 @@
 #include "test_scene.h"
 
+#include "penumbra/analysis/image_metrics.h"
 #include "penumbra/io/image_io.h"
 #include "penumbra/io/scene_json.h"
 #include "penumbra/render/parameters.h"
@@ -116,5 +117,9 @@ vec3 mean_rgb(const Image& image, int x0, int y0, int x1, int y1) {
     }
   return n ? sum / float(n) : sum;
 }
+
+double mean_de(const Image& a, const Image& b) { return delta_e_stats(a, b).mean; }
+
+float antialiased_solid(float signed_distance) { return glm::clamp(0.5f - signed_distance, 0.0f, 1.0f); }
 
 }  // namespace penumbra::testing

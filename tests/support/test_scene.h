@@ -18,13 +18,13 @@ Scene procedural_scene(const std::string& builtin, ivec3 size, int image_size = 
 // and alpha 0 below lo.
 TransferFunction step_tf(float lo, vec3 color, float alpha);
 
-// The 48^3 spheres with a translucent orange-to-white TF, one directional
-// light from the upper front and a little ambient.
 // A unit-intensity directional light travelling along `direction`
 // (normalised), and a unit-intensity point light at `position`.
 Light directional_light(vec3 direction);
 Light point_light(vec3 position);
 
+// The 48^3 spheres with a translucent orange-to-white TF, one directional
+// light from the upper front and a little ambient.
 Scene lit_spheres(int image_size = 48);
 
 // The scene with an opaque grey floor plane 8 units below the volume's box.
@@ -48,5 +48,12 @@ Image render_with(const Scene& scene, const std::string& technique, const Parame
 
 // Mean of an image's rgb over a pixel rectangle [x0, x1) x [y0, y1).
 vec3 mean_rgb(const Image& image, int x0, int y0, int x1, int y1);
+
+// Mean CIEDE2000 between two images of the same size.
+double mean_de(const Image& a, const Image& b);
+
+// An antialiased solid's density at a signed distance from its surface: 1
+// inside, 0 outside, a one-voxel linear ramp across the boundary.
+float antialiased_solid(float signed_distance);
 
 }  // namespace penumbra::testing

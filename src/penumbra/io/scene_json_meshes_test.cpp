@@ -13,7 +13,7 @@ std::string scene_with_meshes(const std::string& meshes) {
   return R"({"volume": {"builtin": "empty", "size": [8, 8, 8]}, "meshes": )" + meshes + "}";
 }
 
-std::string error_key(const std::string& meshes) {
+std::string mesh_error_key(const std::string& meshes) {
   try {
     parse_scene(scene_with_meshes(meshes), std::filesystem::temp_directory_path());
   } catch (const InvalidScene& e) {
@@ -78,29 +78,29 @@ TEST(SceneJsonMeshes, ReadsMeshFilesRelativeToTheScene) {
 }
 
 TEST(SceneJsonMeshes, NamesTheKeyAtFault) {
-  EXPECT_EQ(error_key(R"({"builtin": "sphere"})"), "meshes");
-  EXPECT_EQ(error_key(R"([{"builtin": "sphere", "colour": 1}])"), "meshes[0].colour");
-  EXPECT_EQ(error_key(R"([{}])"), "meshes[0]");
-  EXPECT_EQ(error_key(R"([{"builtin": "sphere", "file": "a.obj"}])"), "meshes[0]");
-  EXPECT_EQ(error_key(R"([{"builtin": "teapot"}])"), "meshes[0].builtin");
-  EXPECT_EQ(error_key(R"([{"builtin": "sphere", "resolution": 99}])"), "meshes[0].resolution");
-  EXPECT_EQ(error_key(R"([{"file": "a.obj", "resolution": 2}])"), "meshes[0].resolution");
-  EXPECT_EQ(error_key(R"([{"builtin": "box", "scale": [1, 0, 1]}])"), "meshes[0].scale");
-  EXPECT_EQ(error_key(R"([{"builtin": "box", "material": {"detail": {"type": "marble"}}}])"),
+  EXPECT_EQ(mesh_error_key(R"({"builtin": "sphere"})"), "meshes");
+  EXPECT_EQ(mesh_error_key(R"([{"builtin": "sphere", "colour": 1}])"), "meshes[0].colour");
+  EXPECT_EQ(mesh_error_key(R"([{}])"), "meshes[0]");
+  EXPECT_EQ(mesh_error_key(R"([{"builtin": "sphere", "file": "a.obj"}])"), "meshes[0]");
+  EXPECT_EQ(mesh_error_key(R"([{"builtin": "teapot"}])"), "meshes[0].builtin");
+  EXPECT_EQ(mesh_error_key(R"([{"builtin": "sphere", "resolution": 99}])"), "meshes[0].resolution");
+  EXPECT_EQ(mesh_error_key(R"([{"file": "a.obj", "resolution": 2}])"), "meshes[0].resolution");
+  EXPECT_EQ(mesh_error_key(R"([{"builtin": "box", "scale": [1, 0, 1]}])"), "meshes[0].scale");
+  EXPECT_EQ(mesh_error_key(R"([{"builtin": "box", "material": {"detail": {"type": "marble"}}}])"),
             "meshes[0].material.detail.type");
-  EXPECT_EQ(error_key(R"([{"builtin": "box", "material": {"detail": {"octaves": 0}}}])"),
+  EXPECT_EQ(mesh_error_key(R"([{"builtin": "box", "material": {"detail": {"octaves": 0}}}])"),
             "meshes[0].material.detail.octaves");
-  EXPECT_EQ(error_key(R"([{"builtin": "box", "material": {"detail": {"texture": "t.nrrd"}}}])"),
+  EXPECT_EQ(mesh_error_key(R"([{"builtin": "box", "material": {"detail": {"texture": "t.nrrd"}}}])"),
             "meshes[0].material.detail.texture");
-  EXPECT_EQ(error_key(R"([{"builtin": "box", "material": {"detail": {"type": "texture"}}}])"),
+  EXPECT_EQ(mesh_error_key(R"([{"builtin": "box", "material": {"detail": {"type": "texture"}}}])"),
             "meshes[0].material.detail.texture");
-  EXPECT_EQ(error_key(R"([{"builtin": "box", "material": {"specular": 2}}])"), "meshes[0].material.specular");
-  EXPECT_EQ(error_key(R"([{"builtin": "box", "material": {"roughness": 0}}])"), "meshes[0].material.roughness");
-  EXPECT_EQ(error_key(R"([{"builtin": "box", "material": {"transfer_function": {"points": []}}}])"),
+  EXPECT_EQ(mesh_error_key(R"([{"builtin": "box", "material": {"specular": 2}}])"), "meshes[0].material.specular");
+  EXPECT_EQ(mesh_error_key(R"([{"builtin": "box", "material": {"roughness": 0}}])"), "meshes[0].material.roughness");
+  EXPECT_EQ(mesh_error_key(R"([{"builtin": "box", "material": {"transfer_function": {"points": []}}}])"),
             "meshes[0].material.transfer_function.points");
   std::string many = "[";
   for (int i = 0; i < 33; ++i) many += std::string(i ? "," : "") + R"({"builtin": "box"})";
-  EXPECT_EQ(error_key(many + "]"), "meshes");
+  EXPECT_EQ(mesh_error_key(many + "]"), "meshes");
 }
 
 }  // namespace

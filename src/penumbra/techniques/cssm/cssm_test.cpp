@@ -17,7 +17,7 @@
 namespace penumbra {
 namespace {
 
-Scene coloured_spheres() {
+Scene cssm_spheres() {
   Scene scene = testing::procedural_scene("spheres", ivec3(24));
   TransferFunction tf({{0.0f, vec3(1.0f), 0.0f},
                        {0.2f, vec3(0.9f, 0.4f, 0.2f), 0.0f},
@@ -44,7 +44,7 @@ struct UnbiasedCase {
 // mean z-score near 0, which a 5 % error in the stop probability or a
 // staircase depth (a fixed point of the stopping segment) push out.
 TEST(Cssm, VisibilityIsUnbiasedPerChannel) {
-  const Scene scene = coloured_spheres();
+  const Scene scene = cssm_spheres();
   SceneResources resources;
   resources.update(scene);
   const RenderView v = resources.view(scene);
@@ -139,7 +139,7 @@ TEST(Cssm, VisibilityIsUnbiasedPerChannel) {
 }
 
 TEST(Cssm, GenerationIsDeterministicPerSeed) {
-  const Scene scene = coloured_spheres();
+  const Scene scene = cssm_spheres();
   SceneResources resources;
   resources.update(scene);
   const RenderView v = resources.view(scene);

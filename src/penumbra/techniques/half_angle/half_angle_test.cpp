@@ -23,12 +23,12 @@ namespace {
 using testing::render_with;
 using testing::save_test_image;
 
-Scene lit_spheres(int image_size = 48) { return testing::with_floor(testing::lit_spheres(image_size)); }
+Scene floored_spheres(int image_size = 48) { return testing::with_floor(testing::lit_spheres(image_size)); }
 
-double mean_de(const Image& a, const Image& b) { return delta_e_stats(a, b).mean; }
+using testing::mean_de;
 
 TEST(HalfAngle, AlbedoZeroMatchesShadowRaysOnTheSpheres) {
-  const Scene scene = lit_spheres();
+  const Scene scene = floored_spheres();
   const Image reference = render_with(scene, "shadow-rays");
   const Image half = render_with(scene, "half-angle");
   save_test_image(reference, "half-angle-spheres-shadow-rays.png");
@@ -43,7 +43,7 @@ TEST(HalfAngle, AlbedoZeroMatchesShadowRaysOnTheSpheres) {
 // composited back to front; a point light outside the volume: a perspective
 // light buffer.
 TEST(HalfAngle, FlippedAxisAndPointLightsMatchShadowRays) {
-  Scene scene = lit_spheres();
+  Scene scene = floored_spheres();
   Light back;
   back.direction = glm::normalize(vec3(0.3f, -1.0f, -0.4f));
   scene.set_lights({back});
@@ -62,7 +62,7 @@ TEST(HalfAngle, FlippedAxisAndPointLightsMatchShadowRays) {
 // Few slices undersample the volume: the error against shadow-rays falls as
 // the slice count rises toward the ray caster's step.
 TEST(HalfAngle, MoreSlicesConverge) {
-  const Scene scene = lit_spheres();
+  const Scene scene = floored_spheres();
   const Image reference = render_with(scene, "shadow-rays");
   const double coarse = mean_de(render_with(scene, "half-angle", {{"slices", 24.0}}), reference);
   const double fine = mean_de(render_with(scene, "half-angle", {{"slices", 192.0}}), reference);
@@ -74,7 +74,7 @@ TEST(HalfAngle, MoreSlicesConverge) {
 // texels several pixels wide; the automatic size then follows ipsvi's texel
 // per pixel at the volume and the shadows stay as sharp as shadow-rays'.
 TEST(HalfAngle, LightBufferFollowsTheZoom) {
-  Scene scene = lit_spheres();
+  Scene scene = floored_spheres();
   Camera camera = scene.camera();
   camera.fov_deg /= 4.0f;
   camera.target = scene.volume().world_box().center() + vec3(6.0f, 0.0f, 4.0f);
@@ -89,7 +89,7 @@ TEST(HalfAngle, LightBufferFollowsTheZoom) {
 
 // Forward scattering: no cone is no change; a cone lightens shadows as in ipsvi.
 TEST(HalfAngle, ForwardScatteringReducesToSingleScatteringWithoutACone) {
-  const Scene scene = lit_spheres();
+  const Scene scene = floored_spheres();
   const Image single = render_with(scene, "half-angle");
   EXPECT_LT(mean_de(render_with(scene, "half-angle", {{"albedo", 0.8}, {"cone_angle_deg", 0.0}}), single), 0.05);
   EXPECT_GT(mean_de(render_with(scene, "half-angle", {{"albedo", 0.8}, {"cone_angle_deg", 30.0}}), single), 0.05);
@@ -99,7 +99,7 @@ TEST(HalfAngle, ForwardScatteringReducesToSingleScatteringWithoutACone) {
 // change; a camera move or a TF change reuses them. A bad light_buffer_size
 // fails in prepare(), naming the parameter.
 TEST(HalfAngle, BuildsLightRaysOncePerLightAndChecksTheBufferSizeInPrepare) {
-  Scene scene = lit_spheres(24);
+  Scene scene = floored_spheres(24);
   const TechniqueInfo& info = find_technique("half-angle");
   ParameterValues params(info.parameters);
   params.set("light_buffer_size", 32.0);
@@ -138,7 +138,7 @@ TEST(HalfAngle, BuildsLightRaysOncePerLightAndChecksTheBufferSizeInPrepare) {
 TEST(HalfAngleVersusIpsvi, AgreeOnTheSpheresWithForwardScattering) {
   // Translucent white spheres over a floor, seen from above, with a forward
   // phase function: the scattering visibly lightens and softens the shadows.
-  Scene scene = lit_spheres();
+  Scene scene = floored_spheres();
   scene.set_transfer_function(testing::step_tf(0.2f, vec3(1.0f), 0.15f));
   Camera camera = scene.camera();
   camera.eye = vec3(0.0f, -60.0f, 150.0f);

@@ -14,8 +14,8 @@
 namespace penumbra {
 namespace {
 
-const Box3 kBox{vec3(-20.0f, -15.0f, -10.0f), vec3(20.0f, 15.0f, 10.0f)};
-constexpr int kWidth = 96, kHeight = 64;
+const Box3 kFitBox{vec3(-20.0f, -15.0f, -10.0f), vec3(20.0f, 15.0f, 10.0f)};
+constexpr int kFitWidth = 96, kFitHeight = 64;
 
 // Independent of the frustum planes of cache_fit.cpp: the point's image
 // coordinates.
@@ -23,7 +23,7 @@ bool seen(const CameraView& c, vec3 p) {
   const vec3 q = p - c.eye;
   const float z = glm::dot(q, c.forward);
   if (!(z > 0.0f)) return false;
-  const float aspect = float(kWidth) / float(kHeight);
+  const float aspect = float(kFitWidth) / float(kFitHeight);
   const float x = glm::dot(q, c.right) / (z * c.half_height * aspect), y = glm::dot(q, c.up) / (z * c.half_height);
   return glm::abs(x) <= 1.0f && glm::abs(y) <= 1.0f;
 }
@@ -34,27 +34,25 @@ bool inside_cache(const LightCacheProjection& p, vec3 point) {
 }
 
 Camera zoomed(float fov_deg) {
-  Camera camera = Camera::framing(kBox, vec3(0.6f, -1.0f, 0.45f), vec3(0.0f, 0.0f, 1.0f), 32.0f);
+  Camera camera = Camera::framing(kFitBox, vec3(0.6f, -1.0f, 0.45f), vec3(0.0f, 0.0f, 1.0f), 32.0f);
   camera.fov_deg = fov_deg;
   camera.target = vec3(8.0f, -3.0f, 2.0f);  // zoom toward a point off the centre
   return camera;
 }
 
-Light directional(vec3 direction) { return testing::directional_light(direction); }
-Light point(vec3 position) { return testing::point_light(position); }
 
 TEST(CacheFit, CoversWhatTheCameraSeesAndKeepsItsSizeWhenZooming) {
-  for (const Light& light : {directional(vec3(1.0f, 0.2f, -0.3f)), directional(vec3(0.3f, -0.5f, -1.0f)),
-                             point(vec3(60.0f, -80.0f, 50.0f))}) {
+  for (const Light& light : {testing::directional_light(vec3(1.0f, 0.2f, -0.3f)), testing::directional_light(vec3(0.3f, -0.5f, -1.0f)),
+                             testing::point_light(vec3(60.0f, -80.0f, 50.0f))}) {
     int size_at_9 = 0;
     for (const float fov : {32.0f, 9.0f, 3.0f}) {
       const CameraView view = zoomed(fov).view();
-      const LightCacheRegion region = visible_cache_region(view, kWidth, kHeight, kBox, nullptr, 0);
-      const LightCacheProjection p = fit_light_cache_projection(light, kBox, region, 0, 2 * kWidth);
+      const LightCacheRegion region = visible_cache_region(view, kFitWidth, kFitHeight, kFitBox, nullptr, 0);
+      const LightCacheProjection p = fit_light_cache_projection(light, kFitBox, region, 0, 2 * kFitWidth);
       int seen_points = 0;
       for (int i = 0; i < 40 * 40 * 40; ++i) {
         const vec3 f((float(i % 40) + 0.5f) / 40.0f, (float(i / 40 % 40) + 0.5f) / 40.0f, (float(i / 1600) + 0.5f) / 40.0f);
-        const vec3 x = kBox.lower + f * kBox.extent();
+        const vec3 x = kFitBox.lower + f * kFitBox.extent();
         if (!seen(view, x)) continue;
         ++seen_points;
         ASSERT_TRUE(inside_cache(p, x)) << "fov " << fov << ", point " << x.x << " " << x.y << " " << x.z;
@@ -64,8 +62,10 @@ TEST(CacheFit, CoversWhatTheCameraSeesAndKeepsItsSizeWhenZooming) {
       std::printf("fov %4.1f: cache %d^2, texel %.3f x %.3f, pixel %.3f\n", fov, p.size,
                   p.texel_world_size(50.0f).x, p.texel_world_size(50.0f).y, region.pixel);
       // Over the whole box the cache would grow 3x per side from fov 9 to 3.
-      EXPECT_LE(p.size, 2 * kWidth) << "fov " << fov;
-      if (fov == 3.0f) EXPECT_LE(p.size, int(1.6f * float(size_at_9)));
+      EXPECT_LE(p.size, 2 * kFitWidth) << "fov " << fov;
+      if (fov == 3.0f) {
+        EXPECT_LE(p.size, int(1.6f * float(size_at_9)));
+      }
       if (light.at_infinity() && fov < 32.0f) {
         // Across the light the texels follow the pixel (up to the 2^(1/4) snap).
         EXPECT_LE(p.texel_world_size(0.0f).y, 1.2f * region.pixel) << "fov " << fov;
@@ -82,19 +82,19 @@ TEST(CacheFit, CoversVisibleFloorPointsShadowedFromOffScreen) {
   Camera camera = zoomed(12.0f);
   camera.target = vec3(-30.0f, -10.0f, -12.0f);  // the floor beside the box
   const CameraView view = camera.view();
-  const Light light = directional(vec3(-1.0f, -0.2f, -0.6f));
-  const LightCacheRegion region = visible_cache_region(view, kWidth, kHeight, kBox, &floor, 1);
-  const LightCacheProjection p = fit_light_cache_projection(light, kBox, region, 0, 2 * kWidth);
+  const Light light = testing::directional_light(vec3(-1.0f, -0.2f, -0.6f));
+  const LightCacheRegion region = visible_cache_region(view, kFitWidth, kFitHeight, kFitBox, &floor, 1);
+  const LightCacheProjection p = fit_light_cache_projection(light, kFitBox, region, 0, 2 * kFitWidth);
   int shadowed = 0;
   for (int i = 0; i < 200 * 200; ++i) {
     const vec3 x(-120.0f + 1.2f * float(i % 200), -120.0f + 1.2f * float(i / 200), -12.0f);
     if (!seen(view, x)) continue;
-    if (intersect_box(Ray{x, -light.direction}, kBox, 0.0f, kInfinity).empty()) continue;
+    if (intersect_box(Ray{x, -light.direction}, kFitBox, 0.0f, kInfinity).empty()) continue;
     ++shadowed;
     ASSERT_TRUE(inside_cache(p, x)) << x.x << " " << x.y;
   }
   EXPECT_GT(shadowed, 20);
-  const LightCacheRegion without = visible_cache_region(view, kWidth, kHeight, kBox, nullptr, 0);
+  const LightCacheRegion without = visible_cache_region(view, kFitWidth, kFitHeight, kFitBox, nullptr, 0);
   EXPECT_LT(without.points.size() + 1, region.points.size() + region.plane_points.size());
 }
 

@@ -125,7 +125,7 @@ TEST(IlluminationCache, DiffuseFilterKeepsConstantsAndRamps) {
   std::vector<vec4> ramp(256);
   for (int i = 0; i < 256; ++i) ramp[std::size_t(i)] = vec4(0.02f * float(i % 16), 0.5f, 0.01f * float(i / 16), 1.0f);
   v.diffuse = ramp.data();
-  for (const vec2 sigma : {vec2(0.0f), vec2(0.5f), vec2(2.0f), vec2(0.7f, 3.0f)}) {
+  for (const vec2& sigma : {vec2(0.0f), vec2(0.5f), vec2(2.0f), vec2(0.7f, 3.0f)}) {
     const vec3 d = v.read_diffuse(vec2(7.3f, 8.6f), sigma);
     EXPECT_NEAR(d.r, 0.02f * (7.3f - 0.5f), 1e-4f);
     EXPECT_NEAR(d.g, 0.5f, 1e-6f);

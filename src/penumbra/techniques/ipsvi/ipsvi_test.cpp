@@ -50,7 +50,7 @@ Rendered render_ipsvi(const Scene& scene, IpsviSettings settings = {}) {
   return out;
 }
 
-double mean_de(const Image& a, const Image& b) { return delta_e_stats(a, b).mean; }
+using testing::mean_de;
 
 // Light-segment samples (at the viewing-ray samples and at the cache writes)
 // per viewing-ray sample: what the sweep saves over shadow rays, bounded at

@@ -13,8 +13,6 @@ namespace {
 
 const Box3 kBox{vec3(-20.0f, -15.0f, -10.0f), vec3(20.0f, 15.0f, 10.0f)};
 
-Light directional(vec3 direction) { return testing::directional_light(direction); }
-Light point(vec3 position) { return testing::point_light(position); }
 
 void expect_round_trip(const LightCacheProjection& p) {
   for (vec2 uv : {vec2(3.5f, 7.25f), vec2(0.5f * float(p.size)), vec2(float(p.size) - 2.0f, 1.5f)}) {
@@ -44,7 +42,7 @@ void expect_box_covered(const LightCacheProjection& p) {
 }
 
 TEST(LightCacheProjection, DirectionalIsOrthographicAlongTheLight) {
-  const Light light = directional(vec3(0.3f, -0.5f, -1.0f));
+  const Light light = testing::directional_light(vec3(0.3f, -0.5f, -1.0f));
   const LightCacheProjection p = make_light_cache_projection(light, kBox, 64);
   EXPECT_EQ(p.mapping, LightMapping::Orthographic);
   expect_round_trip(p);
@@ -61,18 +59,18 @@ TEST(LightCacheProjection, DirectionalIsOrthographicAlongTheLight) {
 }
 
 TEST(LightCacheProjection, PointOutsideIsAFrustumAndInsideAnOctahedralMap) {
-  const LightCacheProjection far = make_light_cache_projection(point(vec3(10.0f, -90.0f, 60.0f)), kBox, 64);
+  const LightCacheProjection far = make_light_cache_projection(testing::point_light(vec3(10.0f, -90.0f, 60.0f)), kBox, 64);
   EXPECT_EQ(far.mapping, LightMapping::Perspective);
   expect_round_trip(far);
   expect_box_covered(far);
   EXPECT_NEAR(far.project(vec3(10.0f, -90.0f, 60.0f) + vec3(3.0f, 4.0f, 0.0f)).z, 5.0f, 1e-4f);
 
-  const LightCacheProjection inside = make_light_cache_projection(point(vec3(1.0f, 2.0f, 3.0f)), kBox, 64);
+  const LightCacheProjection inside = make_light_cache_projection(testing::point_light(vec3(1.0f, 2.0f, 3.0f)), kBox, 64);
   EXPECT_EQ(inside.mapping, LightMapping::Octahedral);
   expect_round_trip(inside);
   expect_box_covered(inside);
   // A light right beside a face would need a frustum wider than ~145 degrees.
-  EXPECT_EQ(make_light_cache_projection(point(vec3(0.0f, 0.0f, 11.0f)), kBox, 64).mapping, LightMapping::Octahedral);
+  EXPECT_EQ(make_light_cache_projection(testing::point_light(vec3(0.0f, 0.0f, 11.0f)), kBox, 64).mapping, LightMapping::Octahedral);
 }
 
 TEST(LightCacheProjection, OctahedralMapRoundTripsEveryOctant) {
@@ -85,7 +83,7 @@ TEST(LightCacheProjection, OctahedralMapRoundTripsEveryOctant) {
 
 TEST(LightCacheProjection, BadSizeNamesTheParameter) {
   try {
-    make_light_cache_projection(directional(vec3(0.0f, 0.0f, -1.0f)), kBox, 0);
+    make_light_cache_projection(testing::directional_light(vec3(0.0f, 0.0f, -1.0f)), kBox, 0);
     FAIL() << "no error";
   } catch (const InvalidArgument& e) {
     EXPECT_EQ(e.name(), "cache_size");

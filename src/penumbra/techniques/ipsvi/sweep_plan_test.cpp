@@ -92,12 +92,10 @@ int check_light_order(const CameraView& c, const Light& light, LightFlow expecte
   return checked;
 }
 
-Light point(vec3 position) { return testing::point_light(position); }
-Light directional(vec3 direction) { return testing::directional_light(direction); }
 
 TEST(SweepPlan, PointLightInFrontOfTheCameraSweepsOutwardFromItsProjection) {
   const CameraView c = camera(false);
-  const Light light = point(vec3(-10.0f, 5.0f, 30.0f));
+  const Light light = testing::point_light(vec3(-10.0f, 5.0f, 30.0f));
   const ImageLight il = project_light(c, kWidth, kHeight, light);
   vec2 expected;
   ASSERT_TRUE(to_pixel(c, light.position, expected));
@@ -108,17 +106,17 @@ TEST(SweepPlan, PointLightInFrontOfTheCameraSweepsOutwardFromItsProjection) {
 
 TEST(SweepPlan, PointLightBehindTheCameraSweepsInward) {
   const CameraView c = camera(false);
-  EXPECT_GT(check_light_order(c, point(c.eye - 40.0f * c.forward + vec3(5.0f, 0.0f, 10.0f)), LightFlow::Inward), 1000);
+  EXPECT_GT(check_light_order(c, testing::point_light(c.eye - 40.0f * c.forward + vec3(5.0f, 0.0f, 10.0f)), LightFlow::Inward), 1000);
 }
 
 TEST(SweepPlan, DirectionalLightUnderPerspectiveSpreadsFromItsVanishingPoint) {
   const CameraView c = camera(false);
   // Travelling away from the camera: rays converge on the vanishing point.
-  EXPECT_GT(check_light_order(c, directional(c.forward + vec3(0.2f, 0.1f, -0.3f)), LightFlow::Inward), 1000);
+  EXPECT_GT(check_light_order(c, testing::directional_light(c.forward + vec3(0.2f, 0.1f, -0.3f)), LightFlow::Inward), 1000);
   // Toward the camera: they spread out from it.
-  EXPECT_GT(check_light_order(c, directional(-c.forward + vec3(0.2f, 0.1f, -0.3f)), LightFlow::Outward), 1000);
+  EXPECT_GT(check_light_order(c, testing::directional_light(-c.forward + vec3(0.2f, 0.1f, -0.3f)), LightFlow::Outward), 1000);
   // Across the view: one parallel sweep.
-  const Light across = directional(c.right);
+  const Light across = testing::directional_light(c.right);
   EXPECT_GT(check_light_order(c, across, LightFlow::Parallel), 1000);
   const SweepPlan plan = make_sweep_plan(project_light(c, kWidth, kHeight, across), PixelRect{0, 0, kWidth, kHeight}, 5);
   ASSERT_EQ(plan.zones.size(), 1u);
@@ -128,10 +126,10 @@ TEST(SweepPlan, DirectionalLightUnderPerspectiveSpreadsFromItsVanishingPoint) {
 
 TEST(SweepPlan, OrthographicCameraSweepsParallelForDirectionalAndOutwardForPointLights) {
   const CameraView c = camera(true);
-  EXPECT_GT(check_light_order(c, directional(vec3(0.4f, 0.6f, -1.0f)), LightFlow::Parallel), 1000);
-  EXPECT_GT(check_light_order(c, point(vec3(10.0f, -20.0f, 35.0f)), LightFlow::Outward), 1000);
+  EXPECT_GT(check_light_order(c, testing::directional_light(vec3(0.4f, 0.6f, -1.0f)), LightFlow::Parallel), 1000);
+  EXPECT_GT(check_light_order(c, testing::point_light(vec3(10.0f, -20.0f, 35.0f)), LightFlow::Outward), 1000);
   // Along the view direction the image direction is undefined: the hint decides.
-  const ImageLight along = project_light(c, kWidth, kHeight, directional(c.forward));
+  const ImageLight along = project_light(c, kWidth, kHeight, testing::directional_light(c.forward));
   EXPECT_EQ(int(along.flow), int(LightFlow::Parallel));
   EXPECT_EQ(along.direction, vec2(0.0f));
   EXPECT_EQ(make_sweep_plan(along, PixelRect{0, 0, kWidth, kHeight}, 5.0f, 0).zones.at(0).axis, 0);

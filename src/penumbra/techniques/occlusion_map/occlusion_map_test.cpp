@@ -35,8 +35,7 @@ std::shared_ptr<Volume> field_volume(int n, const std::function<float(vec3)>& f)
   return volume;
 }
 
-// Antialiased solid: 1 inside, 0 outside, a one-voxel linear ramp across the boundary at signed distance 0.
-float solid(float signed_distance) { return glm::clamp(0.5f - signed_distance, 0.0f, 1.0f); }
+using testing::antialiased_solid;
 
 // Distance from sphere 0's centre of the first iso crossing on rays aimed at
 // it from 4 voxels outside the analytic surface (v = s at radius r_k (1 - s)).
@@ -122,12 +121,12 @@ constexpr float kCupAnalytic = 36.0f / 820.0f;
 // map (half resolution, 5-tap kernel: sigma0 = 2 voxels, so the four regions
 // have sigma 2, 4, 8, 16 and sit 2 sigma out along the normal).
 TEST(OcclusionMapAmbient, InUnitIntervalUnoccludedOutsideASphereDarkerInsideACup) {
-  const auto ball = field_volume(48, [](vec3 p) { return solid(glm::length(p) - 8.0f); });
+  const auto ball = field_volume(48, [](vec3 p) { return antialiased_solid(glm::length(p) - 8.0f); });
   const auto cup = field_volume(48, [](vec3 p) {
     const float r = glm::length(vec2(p.x, p.y));
     const float tube = glm::max(6.0f - r, r - 10.0f);
     const float plate = glm::max(glm::max(-16.0f - p.z, p.z + 12.0f), r - 10.0f);
-    return solid(glm::max(glm::min(tube, plate), glm::max(-16.0f - p.z, p.z - 16.0f)));
+    return antialiased_solid(glm::max(glm::min(tube, plate), glm::max(-16.0f - p.z, p.z - 16.0f)));
   });
   const MomentPyramid ball_map(ball->view(), vec2(0.0f, 1.0f), MomentPyramidSettings{});
   const MomentPyramid cup_map(cup->view(), vec2(0.0f, 1.0f), MomentPyramidSettings{});
@@ -186,7 +185,7 @@ TEST(OcclusionMapAmbient, ClippedMaterialDoesNotOcclude) {
     const float r = glm::length(vec2(p.x, p.y));
     const float tube = glm::max(6.0f - r, r - 10.0f);
     const float plate = glm::max(glm::max(-16.0f - p.z, p.z + 12.0f), r - 10.0f);
-    return solid(glm::max(glm::min(tube, plate), glm::max(-16.0f - p.z, p.z - 16.0f)));
+    return antialiased_solid(glm::max(glm::min(tube, plate), glm::max(-16.0f - p.z, p.z - 16.0f)));
   });
   const std::vector<vec4> keep_below{vec4(0.0f, 0.0f, -1.0f, -11.5f)};  // -z - 11.5 >= 0
   const MomentPyramid clipped(cup->view(), vec2(0.0f, 1.0f), MomentPyramidSettings{}, keep_below);
@@ -254,8 +253,8 @@ TEST(OcclusionMapAmbient, QueryIsTheValueHalfAVoxelUnderTheSurface) {
 Scene lit_balls(int image_size = 48) {
   Scene scene = procedural_scene("spheres", ivec3(48), image_size);
   scene.set_volume(field_volume(48, [](vec3 p) {
-    return glm::max(solid(glm::length(p - vec3(-7.0f, 0.0f, 6.0f)) - 8.0f),
-                    solid(glm::length(p - vec3(10.0f, 4.0f, -4.0f)) - 6.0f));
+    return glm::max(antialiased_solid(glm::length(p - vec3(-7.0f, 0.0f, 6.0f)) - 8.0f),
+                    antialiased_solid(glm::length(p - vec3(10.0f, 4.0f, -4.0f)) - 6.0f));
   }));
   Light light;
   light.direction = glm::normalize(vec3(0.6f, 0.3f, -1.0f));

@@ -41,8 +41,7 @@ std::shared_ptr<Volume> field(ivec3 dims, const std::function<float(vec3)>& f) {
   return volume;
 }
 
-// 1 inside, 0 outside, a one-voxel linear ramp across the boundary.
-float solid(float signed_distance) { return glm::clamp(0.5f - signed_distance, 0.0f, 1.0f); }
+using testing::antialiased_solid;
 
 // The first iso crossing of every pixel's ray of an image_size^2 view through
 // `eye` (an IsoOccupancy view `iso_view` of the same volume finds it), with
@@ -160,7 +159,7 @@ struct ShadowCase {
 // umbra lets at most 10 % through, with the default map and at full
 // resolution (issue 17 measured 64 % and 59 % with the old march).
 TEST(OcclusionMapReference, OneVoxelPlateCastsAnUmbra) {
-  const auto plate = field(ivec3(40), [](vec3 p) { return solid(std::abs(p.z - 8.0f) - 0.5f); });
+  const auto plate = field(ivec3(40), [](vec3 p) { return antialiased_solid(std::abs(p.z - 8.0f) - 0.5f); });
   for (const MomentPyramidSettings& settings : {MomentPyramidSettings{}, MomentPyramidSettings{2, 1.0f, 5}}) {
     const ShadowCase c(plate, settings);
     float worst = 0.0f;
@@ -199,7 +198,7 @@ double crossing(const std::vector<float>& v, const std::vector<float>& x, float 
 
 TEST(OcclusionMapReference, PenumbraWidthFollowsTheLightSize) {
   const auto edge = field(ivec3(64), [](vec3 p) {
-    return solid(glm::max(std::abs(p.z - 14.0f) - 1.0f, p.x));
+    return antialiased_solid(glm::max(std::abs(p.z - 14.0f) - 1.0f, p.x));
   });
   const ShadowCase c(edge, MomentPyramidSettings{});
   std::vector<float> xs;
@@ -244,8 +243,8 @@ TEST(OcclusionMapReference, PenumbraWidthFollowsTheLightSize) {
 // beyond it. (Measured: mean 0.00 under the plate, 1.00 beyond.)
 TEST(OcclusionMapReference, LessDenseOccludersShadowDenseReceivers) {
   const auto volume = field(ivec3(40), [](vec3 p) {
-    const float slab = solid(std::abs(p.z + 15.0f) - 3.0f);
-    const float plate = 0.6f * solid(glm::max(std::abs(p.z - 5.5f) - 1.5f, p.x));
+    const float slab = antialiased_solid(std::abs(p.z + 15.0f) - 3.0f);
+    const float plate = 0.6f * antialiased_solid(glm::max(std::abs(p.z - 5.5f) - 1.5f, p.x));
     return glm::max(slab, plate);
   });
   Scene scene = procedural_scene("spheres", ivec3(40), 48);
@@ -379,9 +378,9 @@ struct AoDataSet {
 std::vector<AoDataSet> ao_data_sets() {
   std::vector<AoDataSet> sets;
   sets.push_back({"balls-over-slab", field(ivec3(48), [](vec3 p) {
-                    return glm::max(glm::max(solid(glm::length(p - vec3(-6.0f, 0.0f, 2.0f)) - 9.0f),
-                                             solid(glm::length(p - vec3(11.0f, 3.0f, -4.0f)) - 5.0f)),
-                                    solid(std::abs(p.z + 14.0f) - 2.0f));
+                    return glm::max(glm::max(antialiased_solid(glm::length(p - vec3(-6.0f, 0.0f, 2.0f)) - 9.0f),
+                                             antialiased_solid(glm::length(p - vec3(11.0f, 3.0f, -4.0f)) - 5.0f)),
+                                    antialiased_solid(std::abs(p.z + 14.0f) - 2.0f));
                   }), 0.5f, vec3(0.4f, -1.0f, 0.7f)});
   sets.push_back({"spheres-field", make_procedural_volume("spheres", ivec3(48)), 0.3f, vec3(0.6f, -1.0f, 0.45f)});
   if (auto v = shared_volume("engine_256x256x128_uint8.nhdr", 4)) {
