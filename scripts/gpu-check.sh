@@ -3,8 +3,8 @@
 # that fits in 8 minutes: the GPU tests (each technique with a CUDA path
 # against the CPU on three scenes, light move / TF change against a fresh
 # render, no uploads for an unchanged scene, the device memory error), then a
-# bench of every technique with a CUDA path at 1024x1024 on a 512^3 volume,
-# printed as one table.
+# bench of every technique with a CUDA path at 1024x1024 on a 512^3 volume
+# (pathtrace at 8 paths per pixel), printed as one table.
 #
 #   scripts/gpu-check.sh            # configures and builds here (Debian with penumbra's dependencies)
 #   scripts/gpu-check.sh BUNDLE     # runs a folder made by scripts/gpu-bundle.sh (no libraries needed)
@@ -33,11 +33,16 @@ timeout 300 "$bin/penumbra_tests" --gtest_filter='Device*:CudaDevice*' --gtest_b
 tests=$?
 
 echo "== bench: 1024x1024, 512^3 marschner-lobb (scenes/gpu-bench-512.json), 10 frames each"
-techniques=(emission-absorption phong shadow-rays shadow-map deep-shadow-map cssm filtered-sat sat-ao cone-shadows)
+techniques=(emission-absorption phong shadow-rays shadow-map deep-shadow-map cssm filtered-sat sat-ao cone-shadows
+            occlusion-map)
 args=()
 for t in "${techniques[@]}"; do args+=(--technique "$t"); done
 json=$(timeout 240 "$bin/penumbra" --device cuda bench "$scenes/gpu-bench-512.json" "${args[@]}" --frames 10)
 bench=$?
+# pathtrace (single scattering, 8 paths per pixel): its samples/s are volume lookups/s.
+json+=$'\n'$(timeout 90 "$bin/penumbra" --device cuda bench "$scenes/gpu-bench-512.json" --technique pathtrace \
+  --param pathtrace.spp=8 --param pathtrace.min_spp=8 --param pathtrace.progress=false --frames 3)
+[ $? -eq 0 ] || bench=1
 field() { sed -n "s/.*\"$1\": \"\{0,1\}\([^\",}]*\).*/\1/p" <<< "$2"; }
 printf '%-20s %-6s %10s %8s %14s %15s %10s %14s\n' technique device frame_ms fps tf_change_ms light_move_ms aux_MB samples/s
 while IFS= read -r line; do

@@ -15,11 +15,13 @@
 #include "penumbra/backends/device.h"
 #include "penumbra/base/error.h"
 #include "penumbra/render/scene_resources.h"
+#include "penumbra/techniques/pathtrace/pathtrace.h"
 #include "penumbra/techniques/registry.h"
 #include "test_scene.h"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <string>
@@ -193,6 +195,11 @@ ParameterValues device_params(const TechniqueInfo& info) {
   if (const ParameterSpec* r = info.parameters.find("resolution"); r && r->min <= 512.0 && 512.0 <= r->max) {
     p["resolution"] = 512.0;
   }
+  if (info.name == "pathtrace") {
+    p["spp"] = 16.0;
+    p["min_spp"] = 4.0;
+    p["progress"] = 0.0;
+  }
   params.apply(p, true);
   return params;
 }
@@ -221,7 +228,8 @@ TEST(CudaDevice, EveryTechniqueWithACudaPathMatchesTheCpu) {
   DeviceModeGuard guard;
   for (const DeviceScene& ds : device_scenes()) {
     for (const TechniqueInfo& info : technique_registry()) {
-      if (!info.has_cuda_path) continue;
+      // pathtrace's images are estimates: PathtraceAgreesWithinItsStandardError.
+      if (!info.has_cuda_path || info.name == "pathtrace") continue;
       for (bool cache : {false, true}) {
         ParameterValues params = device_params(info);
         if (info.parameters.find("shadow_cache")) {
@@ -241,6 +249,45 @@ TEST(CudaDevice, EveryTechniqueWithACudaPathMatchesTheCpu) {
         EXPECT_NEAR(double(gpu_stats.samples), double(cpu_stats.samples), 1e-3 * double(cpu_stats.samples));
       }
     }
+  }
+}
+
+// The same random streams on both devices: a path runs the same until a
+// float comparison (a tentative collision, the roulette) falls the other way,
+// after which it is an independent sample of the same estimator. So the
+// images differ by at most the difference of two independent estimates,
+// sqrt(2) times the standard error, even if every path diverged; a biased
+// device path (a lost light, a wrong phase weight) is far outside that.
+TEST(CudaDevice, PathtraceAgreesWithinItsStandardError) {
+  if (!have_gpu()) GTEST_SKIP() << "no CUDA device (or a build without the CUDA backend)";
+  DeviceModeGuard guard;
+  const TechniqueInfo& info = find_technique("pathtrace");
+  for (const DeviceScene& ds : device_scenes()) {
+    SCOPED_TRACE(ds.name);
+    const ParameterValues params = device_params(info);
+    set_device_mode(DeviceMode::Cpu);
+    auto cpu_technique = info.create();
+    cpu_technique->prepare(ds.scene, params);
+    Image cpu;
+    cpu_technique->render(ds.scene, cpu);
+    const PathTraceEstimate* estimate = pathtrace_estimate(*cpu_technique);
+    ASSERT_NE(estimate, nullptr);
+    double error_squares = 0.0;
+    for (std::size_t i = 0; i < estimate->standard_error.pixel_count(); ++i) {
+      const vec4 e = estimate->standard_error.data()[i];
+      error_squares += double(glm::dot(vec3(e), vec3(e))) / 3.0;
+    }
+    const double rms_error = std::sqrt(error_squares / double(estimate->standard_error.pixel_count()));
+    RenderStats gpu_stats;
+    const Image gpu = render_on(Device::Cuda, ds.scene, info, params, gpu_stats);
+    EXPECT_EQ(gpu_stats.device, Device::Cuda);
+    EXPECT_LE(rmse(gpu, cpu), 3.0 * std::sqrt(2.0) * rms_error + 1e-4);
+    // The image means: the pixels' errors average down by sqrt(pixels).
+    const double pixels = double(cpu.pixel_count());
+    EXPECT_NEAR(testing::mean_rgb(gpu, 0, 0, gpu.width(), gpu.height()).g,
+                testing::mean_rgb(cpu, 0, 0, cpu.width(), cpu.height()).g,
+                3.0 * std::sqrt(2.0) * rms_error / std::sqrt(pixels) + 1e-5)
+        << "the image means differ by more than their standard error";
   }
 }
 

@@ -50,7 +50,7 @@ const std::vector<TechniqueInfo>& technique_registry() {
         with_cuda_path(emission_absorption_info()),
         with_cuda_path(phong_info()),
         with_cuda_path(shadow_rays_info()),
-        pathtrace_info(),
+        with_cuda_path(pathtrace_info()),
         with_cuda_path(shadow_map_info()),
         with_cuda_path(deep_shadow_map_info()),
         with_cuda_path(cssm_info()),
@@ -59,7 +59,7 @@ const std::vector<TechniqueInfo>& technique_registry() {
         with_cuda_path(cone_shadows_info()),
         ipsvi_info(),
         half_angle_info(),
-        occlusion_map_info(),
+        with_cuda_path(occlusion_map_info()),
         convolution_info(),
     };
     for (TechniqueInfo& info : r) info = noting_device(std::move(info));

@@ -146,6 +146,9 @@ struct AnyVoxelSampler {
   PENUMBRA_HD AnyVoxelSampler(const void* voxels, ivec3 dims, VoxelType voxel_type)
       : grid(dims), data(voxels), type(voxel_type) {}
 
+  // Not known at compile time: kernels take the TF lookup that checks for
+  // NaN (the float types may hold it).
+  static constexpr bool kAlwaysFinite = false;
   PENUMBRA_HD bool all_finite() const { return type != VoxelType::Float32 && type != VoxelType::Float64; }
 
   template <class L> PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Float sample(const typename L::Vec3& p) const {
@@ -170,6 +173,10 @@ struct AnyVoxelSampler {
   template <class L> PENUMBRA_HD typename L::Vec3 gradient(const typename L::Vec3& p) const {
     return central_gradient<L>(grid, p, [&](const typename L::Vec3& q) { return sample<L>(q); });
   }
+
+  // The scalar interface of VolumeSampler (the device's kernels).
+  PENUMBRA_HD float operator()(vec3 p) const { return sample<ScalarLanes>(p); }
+  PENUMBRA_HD vec3 gradient(vec3 p) const { return gradient<ScalarLanes>(p); }
 };
 
 }  // namespace penumbra

@@ -64,16 +64,25 @@ class DeviceMirror {
 
   // A render view: its arrays mirrored, the view itself copied for this
   // frame (once per host view, so a Lighting's view pointer and the kernel's
-  // view are the same copy).
-  const RenderView* view(const RenderView& host) {
+  // view are the same copy). `cells` says how its majorants and empty-space
+  // distances are versioned: with the data and TF (the scene's), or copied
+  // every frame (a technique's own occupancy, which follows one of its
+  // parameters: occlusion-map's iso-value; a few bytes per macrocell).
+  enum class Cells : std::uint8_t { FollowTf, PerFrame };
+  const RenderView* view(const RenderView& host, Cells cells_version = Cells::FollowTf) {
     const auto found = views_.find(&host);
     if (found != views_.end()) return found->second;
     RenderView d = host;
     d.volume = volume(host.volume, true, "the volume");
     const std::size_t cells = std::size_t(host.macrocells.dims.x) * host.macrocells.dims.y * host.macrocells.dims.z;
     d.macrocells.min_max = tf_array(host.macrocells.min_max, cells, "the macrocell grid");
-    d.majorants = tf_array(host.majorants, cells, "the majorant grid");
-    d.empty_distance = tf_array(host.empty_distance, cells, "the empty-space distances");
+    if (cells_version == Cells::PerFrame) {
+      d.majorants = frame(host.majorants, cells, "the occupancy grid");
+      d.empty_distance = frame(host.empty_distance, cells, "the empty-space distances");
+    } else {
+      d.majorants = tf_array(host.majorants, cells, "the majorant grid");
+      d.empty_distance = tf_array(host.empty_distance, cells, "the empty-space distances");
+    }
     d.tf.entries = tf_array(host.tf.entries, std::size_t(host.tf.size), "the transfer function table");
     d.tf.sigma = tf_array(host.tf.sigma, std::size_t(host.tf.size), "the transfer function table");
     if (host.normals.texels) {

@@ -5,7 +5,9 @@
 // device_mirror.h); every kernel body is the technique's shared header.
 //
 // A technique's .cu unit includes its visibility header and this file and
-// instantiates its Lightings with PENUMBRA_INSTANTIATE_DEVICE(type).
+// instantiates its Lightings with PENUMBRA_INSTANTIATE_DEVICE(type); a
+// technique with its own image loop (pathtrace, occlusion-map) launches its
+// per-pixel functor, the one its CPU tile loop calls, with launch_pixels.
 #include "penumbra/backends/cuda/device_cache.h"
 #include "penumbra/backends/cuda/device_mirror.h"
 #include "penumbra/backends/device.h"
@@ -14,23 +16,40 @@
 
 #include <cuda_runtime.h>
 
+#include <cstdint>
 #include <memory>
 
 namespace penumbra {
 
-// Samples every voxel type through one switch (uniform across a warp), so a
-// Lighting compiles once, not once per voxel type.
-template <class Lighting>
-__global__ void march_pixels(const RenderView* view, Lighting lighting, vec4* out, unsigned long long* samples) {
+// The launch: f(x, y) once per pixel of a width x height image, one thread
+// per pixel; returns the sum of what the calls return (the samples or
+// lookups they took). Every device render goes through it: march_pixel for
+// the shared loop (MarchPixels below) and the per-pixel functors of the
+// techniques with their own image loops (pathtrace, occlusion-map).
+template <class PixelFunctor>
+__global__ void for_each_pixel(int width, int height, PixelFunctor f, unsigned long long* counter) {
   const int x = int(blockIdx.x * blockDim.x + threadIdx.x);
   const int y = int(blockIdx.y * blockDim.y + threadIdx.y);
-  const RenderView& v = *view;
-  if (x >= v.width || y >= v.height) return;
-  const AnyVoxelSampler sampler(v.volume.data, v.volume.dims, v.volume.type);
-  RayStats stats;
-  out[std::size_t(y) * v.width + x] = march_pixel(v, sampler, lighting, x, y, stats);
-  atomicAdd(samples, static_cast<unsigned long long>(stats.samples));
+  if (x >= width || y >= height) return;
+  atomicAdd(counter, static_cast<unsigned long long>(f(x, y)));
 }
+
+// The shared loop's per-pixel functor on the device. Samples every voxel
+// type through one switch (uniform across a warp), so a Lighting compiles
+// once, not once per voxel type.
+template <class Lighting> struct MarchPixels {
+  const RenderView* view;
+  Lighting lighting;
+  vec4* out;
+
+  __device__ std::uint64_t operator()(int x, int y) const {
+    const RenderView& v = *view;
+    const AnyVoxelSampler sampler(v.volume.data, v.volume.dims, v.volume.type);
+    RayStats stats;
+    out[std::size_t(y) * std::size_t(v.width) + std::size_t(x)] = march_pixel(v, sampler, lighting, x, y, stats);
+    return stats.samples;
+  }
+};
 
 // The DeviceCache of the technique state that made `view`.
 inline DeviceCache& device_cache_of(const RenderView& view) {
@@ -40,6 +59,36 @@ inline DeviceCache& device_cache_of(const RenderView& view) {
   return *static_cast<DeviceCache*>(state.get());
 }
 
+// Runs f over every pixel (for_each_pixel) and waits for it; returns the
+// sum of its counts. `cache` holds the counter for this frame.
+template <class PixelFunctor>
+std::uint64_t launch_pixels(DeviceCache& cache, int width, int height, const PixelFunctor& f) {
+  auto* counter = static_cast<unsigned long long*>(cache.frame_zeroed(sizeof(unsigned long long), "counters"));
+  if (width > 0 && height > 0) {
+    const dim3 block(16, 8);
+    const dim3 grid((unsigned(width) + block.x - 1) / block.x, (unsigned(height) + block.y - 1) / block.y);
+    for_each_pixel<<<grid, block>>>(width, height, f, counter);
+    check_cuda(cudaGetLastError(), "kernel launch");
+  }
+  unsigned long long count = 0;
+  check_cuda(cudaMemcpy(&count, counter, sizeof(count), cudaMemcpyDeviceToHost), "cudaMemcpy (counters)");
+  return count;
+}
+
+// Launches the functor make_functor(out) returns over the image, out being
+// device memory for one vec4 per pixel, and copies the image back; returns
+// the functor's counts. For the per-pixel functors that write the image.
+template <class MakeFunctor>
+std::uint64_t launch_image(DeviceCache& cache, int width, int height, Image& image, const MakeFunctor& make_functor) {
+  const std::size_t pixels = std::size_t(width) * std::size_t(height);
+  auto* out = static_cast<vec4*>(cache.scratch(pixels * sizeof(vec4), "the image"));
+  const std::uint64_t count = launch_pixels(cache, width, height, make_functor(out));
+  if (pixels > 0) {
+    check_cuda(cudaMemcpy(image.data(), out, pixels * sizeof(vec4), cudaMemcpyDeviceToHost), "cudaMemcpy (image)");
+  }
+  return count;
+}
+
 template <class Lighting>
 void render_device(const RenderView& view, const Lighting& lighting, Image& image, RayStats& stats) {
   DeviceCache& cache = device_cache_of(view);
@@ -47,19 +96,9 @@ void render_device(const RenderView& view, const Lighting& lighting, Image& imag
   DeviceMirror mirror(cache, view);
   const RenderView* device_view = mirror.view(view);
   const Lighting device_lighting = lighting.on_device(mirror);
-  const std::size_t pixels = std::size_t(view.width) * std::size_t(view.height);
-  auto* out = static_cast<vec4*>(cache.scratch(pixels * sizeof(vec4), "the image"));
-  auto* samples = static_cast<unsigned long long*>(cache.frame_zeroed(sizeof(unsigned long long), "counters"));
-  const dim3 block(16, 8);
-  const dim3 grid((unsigned(view.width) + block.x - 1) / block.x, (unsigned(view.height) + block.y - 1) / block.y);
-  if (pixels > 0) {
-    march_pixels<<<grid, block>>>(device_view, device_lighting, out, samples);
-    check_cuda(cudaGetLastError(), "kernel launch");
-    check_cuda(cudaMemcpy(image.data(), out, pixels * sizeof(vec4), cudaMemcpyDeviceToHost), "cudaMemcpy (image)");
-  }
-  unsigned long long count = 0;
-  check_cuda(cudaMemcpy(&count, samples, sizeof(count), cudaMemcpyDeviceToHost), "cudaMemcpy (counters)");
-  stats.samples += count;
+  stats.samples += launch_image(cache, view.width, view.height, image, [&](vec4* out) {
+    return MarchPixels<Lighting>{device_view, device_lighting, out};
+  });
   cache.end_frame();
 }
 

@@ -2,7 +2,9 @@
 // The isosurface image loop: one ray per pixel to the first iso crossing (or
 // the nearest opaque plane), shaded by IsosurfaceShader. It mirrors
 // render_image (render_loop.h), which composites DVR samples and so cannot
-// stop at a surface.
+// stop at a surface: over the CPU's tiles, or on the CUDA device with the
+// same per-pixel functor (isosurface_pixel_at).
+#include "penumbra/backends/device.h"
 #include "penumbra/base/parallel.h"
 #include "penumbra/render/image.h"
 #include "penumbra/render/render_loop.h"
@@ -26,20 +28,44 @@ PENUMBRA_HD vec4 isosurface_pixel(const IsosurfaceShader<K, Sampler>& shader, co
   return vec4(v.background, 0.0f);
 }
 
+// The per-pixel functor both backends run: pixel (x, y)'s ray, its shaded
+// hit written to out; returns the samples taken.
+template <int K, class Sampler>
+PENUMBRA_HD std::uint64_t isosurface_pixel_at(const IsosurfaceShader<K, Sampler>& shader, vec4* out, int x, int y) {
+  const RenderView& v = *shader.setup->iso_view;
+  const Ray ray = v.camera.pixel_ray(float(x) + 0.5f, float(y) + 0.5f, v.width, v.height);
+  std::uint64_t samples = 0;
+  out[std::size_t(y) * std::size_t(v.width) + std::size_t(x)] = isosurface_pixel(shader, ray, samples);
+  return samples;
+}
+
+// Renders the isosurface image on the CUDA device into `image` (sized by
+// the caller); returns the samples. Defined only in builds with the CUDA
+// backend (occlusion_map_device.cu), for K = 2 and 4.
+template <int K> std::uint64_t render_isosurface_device(const OcclusionShadingSetup<K>& setup, Image& image);
+
 template <int K>
 void render_isosurface_image(const OcclusionShadingSetup<K>& setup, Image& image, RenderStats* stats) {
   const RenderView& v = *setup.iso_view;
   if (image.width() != v.width || image.height() != v.height) image = Image(v.width, v.height);
+#if defined(PENUMBRA_HAVE_CUDA)
+  if (active_device() == Device::Cuda) {
+    const std::uint64_t samples = render_isosurface_device(setup, image);
+    if (stats) {
+      stats->samples += samples;
+      stats->rays += std::uint64_t(v.width) * std::uint64_t(v.height);
+      stats->device = Device::Cuda;
+    }
+    return;
+  }
+#endif
   std::atomic<std::uint64_t> total_samples{0};
   with_sampler(v.volume, [&](const auto& sampler) {
     const IsosurfaceShader<K, std::decay_t<decltype(sampler)>> shader{&setup, sampler};
     parallel_for_tiles(v.width, v.height, 16, [&](int x0, int y0, int x1, int y1) {
       std::uint64_t samples = 0;
       for (int y = y0; y < y1; ++y) {
-        for (int x = x0; x < x1; ++x) {
-          const Ray ray = v.camera.pixel_ray(float(x) + 0.5f, float(y) + 0.5f, v.width, v.height);
-          image.at(x, y) = isosurface_pixel(shader, ray, samples);
-        }
+        for (int x = x0; x < x1; ++x) samples += isosurface_pixel_at(shader, image.data(), x, y);
       }
       total_samples.fetch_add(samples, std::memory_order_relaxed);
     });

@@ -6,6 +6,8 @@
 // the map filterable), and between levels linearly (a fractional mip level).
 #include "penumbra/base/math.h"
 
+#include <cstddef>
+
 namespace penumbra {
 
 inline constexpr int kMaxMomentLevels = 8;
@@ -24,6 +26,16 @@ template <int K> struct MomentPyramidView {
   int level_count = 0;
   vec3 origin{0.0f};    // world position of node 0 of every level (the volume's origin)
   float sigma0 = 1.0f;  // world-space standard deviation of level 0's Gaussian region
+
+  // The device copy (backends/device.h): every level's moments mirrored.
+  template <class Mirror> MomentPyramidView on_device(Mirror& m) const {
+    MomentPyramidView d = *this;
+    for (int i = 0; i < level_count; ++i) {
+      const MomentLevelView& l = levels[i];
+      d.levels[i].texels = m.structure(l.texels, std::size_t(l.dims.x) * l.dims.y * l.dims.z * K, "the moment pyramid");
+    }
+    return d;
+  }
 
   // Level k's region is a Gaussian of standard deviation sigma0 * 2^k.
   PENUMBRA_HD float sigma(float level) const { return sigma0 * glm::exp2(level); }

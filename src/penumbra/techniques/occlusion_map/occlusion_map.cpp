@@ -89,6 +89,7 @@ class OcclusionMap final : public Technique {
       render_isosurface_image(setup, image, stats);
       return;
     }
+    if (active_device() == Device::Cuda) note_cpu_fallback("occlusion-map in mode dvr");
     const Shading shading = scene.material().shading;
     render_image(
         lit,

@@ -34,6 +34,18 @@ template <int K> struct OcclusionShadingSetup {
   ShadowMode shadows = ShadowMode::Soft;
   bool ambient_occlusion = true;
   bool ao_on_lights = true;
+
+  // The device copy (backends/device.h): the views and the pyramid mirrored,
+  // the setup itself copied for this frame. The iso view's occupancy follows
+  // the iso-value, a parameter no scene version counts, so it is copied
+  // every frame (a few bytes per macrocell).
+  template <class Mirror> const OcclusionShadingSetup* on_device(Mirror& m) const {
+    OcclusionShadingSetup d = *this;
+    d.lit_view = m.view(*lit_view);
+    d.iso_view = m.view(*iso_view, Mirror::Cells::PerFrame);
+    d.queries.pyramid = queries.pyramid.on_device(m);
+    return m.frame(&d, 1, "the occlusion shading setup");
+  }
 };
 
 // Per-light visibility of one surface or plane point.

@@ -1,10 +1,11 @@
 #include "penumbra/techniques/pathtrace/pathtrace.h"
 
+#include "penumbra/backends/device.h"
 #include "penumbra/base/error.h"
 #include "penumbra/base/memory_budget.h"
 #include "penumbra/base/parallel.h"
 #include "penumbra/render/scene_resources.h"
-#include "penumbra/techniques/pathtrace/path_kernel.h"
+#include "penumbra/techniques/pathtrace/path_pixels.h"
 #include "penumbra/techniques/pathtrace/progress_bar.h"
 
 #include <fmt/format.h>
@@ -26,41 +27,26 @@ double lightness_standard_error(double mean_luminance, double luminance_standard
 
 namespace {
 
-// Running sums of one pixel's paths (double: a pixel may take millions).
-struct PixelAccumulator {
-  dvec3 sum{0.0};
-  dvec3 sum_squares{0.0};
-  double luminance_squares = 0.0;
-  std::uint32_t paths = 0;
-  std::uint32_t hits = 0;
-  bool done = false;
+dvec3 mean_of(const PixelAccumulator& p) { return p.paths ? p.sum / double(p.paths) : dvec3(0.0); }
 
-  void add(const PathSample& s) {
-    const dvec3 r(s.radiance);
-    sum += r;
-    sum_squares += r * r;
-    const double y = luminance(s.radiance);
-    luminance_squares += y * y;
-    ++paths;
-    hits += s.hit ? 1u : 0u;
-  }
-  dvec3 mean() const { return paths ? sum / double(paths) : dvec3(0.0); }
-  // Unbiased sample variance of the mean: (sum x^2 - (sum x)^2 / n) / (n (n - 1)).
-  double variance_of_mean(double sum_x, double sum_x2) const {
-    if (paths < 2) return std::numeric_limits<double>::infinity();
-    const double n = double(paths);
-    return std::max(0.0, sum_x2 - sum_x * sum_x / n) / (n * (n - 1.0));
-  }
-  dvec3 standard_error() const {
-    return dvec3(std::sqrt(variance_of_mean(sum.x, sum_squares.x)), std::sqrt(variance_of_mean(sum.y, sum_squares.y)),
-                 std::sqrt(variance_of_mean(sum.z, sum_squares.z)));
-  }
-  double lightness_error() const {
-    const double y = luminance(vec3(sum));
-    const double n = std::max(1.0, double(paths));
-    return lightness_standard_error(y / n, std::sqrt(variance_of_mean(y, luminance_squares)));
-  }
-};
+// Unbiased sample variance of the mean: (sum x^2 - (sum x)^2 / n) / (n (n - 1)).
+double variance_of_mean(const PixelAccumulator& p, double sum_x, double sum_x2) {
+  if (p.paths < 2) return std::numeric_limits<double>::infinity();
+  const double n = double(p.paths);
+  return std::max(0.0, sum_x2 - sum_x * sum_x / n) / (n * (n - 1.0));
+}
+
+dvec3 standard_error_of(const PixelAccumulator& p) {
+  return dvec3(std::sqrt(variance_of_mean(p, p.sum.x, p.sum_squares.x)),
+               std::sqrt(variance_of_mean(p, p.sum.y, p.sum_squares.y)),
+               std::sqrt(variance_of_mean(p, p.sum.z, p.sum_squares.z)));
+}
+
+double lightness_error_of(const PixelAccumulator& p) {
+  const double y = luminance(vec3(p.sum));
+  const double n = std::max(1.0, double(p.paths));
+  return lightness_standard_error(y / n, std::sqrt(variance_of_mean(p, y, p.luminance_squares)));
+}
 
 // Delta and ratio tracking take on average majorant x distance tentative
 // collisions to cross a macrocell, so a medium dense enough makes a path
@@ -122,47 +108,57 @@ class PathTrace final : public Technique {
     std::atomic<std::uint64_t> lookups{0};
     std::atomic<std::uint64_t> paths{0};
     std::uint64_t skipped = 0;  // paths that pixels stopped early will not take
-    with_sampler(view.volume, [&](const auto& sampler) {
-      using Kernel = PathKernel<std::decay_t<decltype(sampler)>>;
-      const Kernel kernel{&view, &shadows, sampler, settings_};
-      int taken = 0;  // paths every active pixel has taken
-      while (taken < spp_) {
-        const int target = taken == 0 ? std::min(spp_, min_spp_) : std::min(spp_, 2 * taken);
+    const auto add_paths = [&](std::uint64_t taken_now) {
+      const std::uint64_t done = paths.fetch_add(taken_now, std::memory_order_relaxed) + taken_now;
+      bar.update((double(done) + double(skipped)) / budget);
+      if (watcher) watcher->report((double(done) + double(skipped)) / budget);
+    };
+    const bool on_device = active_device() == Device::Cuda;
+    // One pass: paths [taken, target) of every pixel not done, on the device
+    // or over the CPU's tiles, through the same trace_pixel_paths.
+    const auto run_pass = [&](const PathPass& pass) {
+      if (on_device) {
+#if defined(PENUMBRA_HAVE_CUDA)
+        const auto active = std::uint64_t(
+            std::count_if(accumulators_.begin(), accumulators_.end(), [](const auto& p) { return !p.done; }));
+        lookups += trace_paths_device(view, shadows, settings_, pass, accumulators_);
+        add_paths(active * std::uint64_t(pass.target - pass.taken));
+#endif
+        return;
+      }
+      with_sampler(view.volume, [&](const auto& sampler) {
+        const PathKernel<std::decay_t<decltype(sampler)>> kernel{&view, &shadows, sampler, settings_};
         parallel_for_tiles(width, height, 16, [&](int x0, int y0, int x1, int y1) {
           if (watcher && watcher->stop_requested()) return;  // the tiles left are skipped
           std::uint64_t tile_lookups = 0;
           std::uint64_t tile_paths = 0;
           for (int y = y0; y < y1; ++y) {
             for (int x = x0; x < x1; ++x) {
-              const std::uint64_t index = std::uint64_t(y) * std::uint64_t(width) + std::uint64_t(x);
-              PixelAccumulator& pixel = accumulators_[index];
+              PixelAccumulator& pixel = accumulators_[std::size_t(y) * std::size_t(width) + std::size_t(x)];
               if (pixel.done) continue;
-              for (int s = taken; s < target; ++s) {
-                Pcg32 rng = path_rng(seed_, std::uint32_t(index), std::uint32_t(s));
-                const float dx = antialias_ ? rng.next_float() : 0.5f;
-                const float dy = antialias_ ? rng.next_float() : 0.5f;
-                const Ray ray = view.camera.pixel_ray(float(x) + dx, float(y) + dy, width, height);
-                pixel.add(kernel.trace(ray, rng, tile_lookups));
-              }
-              tile_paths += std::uint64_t(target - taken);
+              tile_lookups += trace_pixel_paths(kernel, pass, pixel, x, y);
+              tile_paths += std::uint64_t(pass.target - pass.taken);
             }
           }
           lookups.fetch_add(tile_lookups, std::memory_order_relaxed);
-          const std::uint64_t done = paths.fetch_add(tile_paths, std::memory_order_relaxed) + tile_paths;
-          bar.update((double(done) + double(skipped)) / budget);
-          if (watcher) watcher->report((double(done) + double(skipped)) / budget);
+          add_paths(tile_paths);
         });
-        if (watcher && watcher->stop_requested()) throw RenderCancelled();
-        taken = target;
-        ++estimate_.passes;
-        if (target_error_ > 0.0 && taken >= min_spp_ && taken < spp_) {
-          const std::uint64_t stopped = stop_converged_pixels(width, height);
-          skipped += stopped * std::uint64_t(spp_ - taken);
-          if (std::all_of(accumulators_.begin(), accumulators_.end(), [](const auto& p) { return p.done; })) break;
-        }
+        return 0;
+      });
+    };
+    int taken = 0;  // paths every active pixel has taken
+    while (taken < spp_) {
+      const int target = taken == 0 ? std::min(spp_, min_spp_) : std::min(spp_, 2 * taken);
+      run_pass(PathPass{width, height, taken, target, seed_, antialias_});
+      if (watcher && watcher->stop_requested()) throw RenderCancelled();
+      taken = target;
+      ++estimate_.passes;
+      if (target_error_ > 0.0 && taken >= min_spp_ && taken < spp_) {
+        const std::uint64_t stopped = stop_converged_pixels(width, height);
+        skipped += stopped * std::uint64_t(spp_ - taken);
+        if (std::all_of(accumulators_.begin(), accumulators_.end(), [](const auto& p) { return p.done; })) break;
       }
-      return 0;
-    });
+    }
 
     if (image.width() != width || image.height() != height) image = Image(width, height);
     estimate_.standard_error = Image(width, height);
@@ -170,14 +166,15 @@ class PathTrace final : public Technique {
       for (int x = 0; x < width; ++x) {
         const PixelAccumulator& pixel = accumulators_[std::size_t(y) * std::size_t(width) + std::size_t(x)];
         const float n = float(std::max(1u, pixel.paths));
-        image.at(x, y) = vec4(vec3(pixel.mean()), float(pixel.hits) / n);
-        estimate_.standard_error.at(x, y) = vec4(vec3(pixel.standard_error()), float(pixel.paths));
+        image.at(x, y) = vec4(vec3(mean_of(pixel)), float(pixel.hits) / n);
+        estimate_.standard_error.at(x, y) = vec4(vec3(standard_error_of(pixel)), float(pixel.paths));
       }
     }
     estimate_.paths = paths.load();
     if (stats) {
       stats->samples += lookups.load();
       stats->rays += estimate_.paths;
+      stats->device = on_device ? Device::Cuda : Device::Cpu;
     }
   }
 
@@ -188,7 +185,7 @@ class PathTrace final : public Technique {
   // but its neighbours across the edge do.
   std::uint64_t stop_converged_pixels(int width, int height) {
     std::vector<double> error(accumulators_.size());
-    for (std::size_t i = 0; i < error.size(); ++i) error[i] = accumulators_[i].lightness_error();
+    for (std::size_t i = 0; i < error.size(); ++i) error[i] = lightness_error_of(accumulators_[i]);
     std::uint64_t stopped = 0;
     for (int y = 0; y < height; ++y) {
       for (int x = 0; x < width; ++x) {
