@@ -86,7 +86,8 @@ class FilteredSat final : public Technique {
     const FilteredVisibility direct{tables_.lookups().data(), filter_};
     if (caches_.built()) {
       // Without the tables every lookup reads the cache (clamped to its box).
-      const Box3 tables_box = tables_kept_ ? view.box : Box3{vec3(-std::numeric_limits<float>::max()), vec3(std::numeric_limits<float>::max())};
+      constexpr float kFar = std::numeric_limits<float>::max();
+      const Box3 tables_box = tables_kept_ ? view.box : Box3{vec3(-kFar), vec3(kFar)};
       const CachedFilteredVisibility cached{direct, caches_.views(), tables_box, cache_tolerance_};
       render_lit(view, cached, shading, image, stats);
     } else {
@@ -135,7 +136,8 @@ TechniqueInfo filtered_sat_info() {
                               "shadow cache grid size as a fraction of the data grid"),
           ParameterSpec::real("cache_tolerance", 0.1, 0.0, 1.0,
                               "cache cells whose texels differ by more than this read the tables instead "
-                              "(1 = always the cache)"),
+                              "(1 = always the cache: then, without a floor plane, each light's table is "
+                              "released once its cache is filled)"),
           ParameterSpec::real("shadow_density_scale", 1.0, 0.0, 100.0,
                               "multiplies the filtered optical depth (0 = unshadowed)"),
       }},

@@ -259,7 +259,8 @@ TEST(FilteredSat, TablesAreReleasedOnceTheCachesAreFilled) {
   const ivec3 dims = visibility_cache_dims(scene.volume().dims(), 0.5f);
   const std::uint64_t cache_bytes = std::uint64_t(dims.x) * dims.y * dims.z * sizeof(float);
   EXPECT_EQ(t->aux_bytes(), 2 * cache_bytes);
-  const double per_voxel_per_light = double(cache_bytes) / (double(scene.volume().dims().x) * scene.volume().dims().y * scene.volume().dims().z);
+  const ivec3 data = scene.volume().dims();
+  const double per_voxel_per_light = double(cache_bytes) / (double(data.x) * data.y * data.z);
   const double at_256 = 2.0 * per_voxel_per_light * 256.0 * 256.0 * 256.0 / (1024.0 * 1024.0);
   std::printf("released: %.3f bytes per voxel per light, %.1f MiB for 256^3 with two lights\n", per_voxel_per_light,
               at_256);

@@ -133,13 +133,13 @@ int LightTables::build(const RenderView& shadows, const std::vector<Light>& ligh
       tables_.push_back(std::move(old[std::size_t(from_old[w])]));
       ids_.push_back(old_ids[std::size_t(from_old[w])]);
     } else if (p.kind == LightTableKind::Cartesian) {
-      tables_.push_back(
-          build_extinction_table(shadows, cartesian[w], fmt::format("filtered-sat CSAT {} (sat_resolution sets its size)", w), samples));
+      tables_.push_back(build_extinction_table(
+          shadows, cartesian[w], fmt::format("filtered-sat CSAT {} (sat_resolution sets its size)", w), samples));
       ids_.push_back(next_id_++);
       ++built;
     } else {
-      tables_.push_back(build_spherical_extinction_table(shadows, spherical[w],
-                                                         fmt::format("filtered-sat SSAT {} (sat_resolution sets its size)", w), samples));
+      tables_.push_back(build_spherical_extinction_table(
+          shadows, spherical[w], fmt::format("filtered-sat SSAT {} (sat_resolution sets its size)", w), samples));
       ids_.push_back(next_id_++);
       ++built;
     }

@@ -70,6 +70,7 @@ void SummedAreaTable::integrate() {
   // Node slab z's residuals against the trilinear base of the blocks it
   // lies in (on a block face both blocks give the same base).
   const SummedAreaTableView v = view();
+  const std::int64_t strides[3] = {1, bx, bx * by};
   auto write_residuals = [&](std::int64_t z, const double* p) {
     const int ck = std::min(int(z / kSatBlock), blocks_.z - 1);
     const double tz = double(z - std::int64_t(ck) * kSatBlock) / kSatBlock;
@@ -80,15 +81,9 @@ void SummedAreaTable::integrate() {
         for (std::int64_t i = 0; i < nx; ++i) {
           const int ci = std::min(int(i / kSatBlock), blocks_.x - 1);
           const double tx = double(i - std::int64_t(ci) * kSatBlock) / kSatBlock;
-          const double* c = corners_.data() + v.corner_index(ci, cj, ck);
-          const std::int64_t sy = bx, sz = bx * by;
-          const double x00 = c[0] + tx * (c[1] - c[0]);
-          const double x10 = c[sy] + tx * (c[sy + 1] - c[sy]);
-          const double x01 = c[sz] + tx * (c[sz + 1] - c[sz]);
-          const double x11 = c[sy + sz] + tx * (c[sy + sz + 1] - c[sy + sz]);
-          const double y0 = x00 + ty * (x10 - x00);
-          const double y1 = x01 + ty * (x11 - x01);
-          nodes[z * slab + j * nx + i] = float(p[j * nx + i] - (y0 + tz * (y1 - y0)));
+          const double t[3] = {tx, ty, tz};
+          const double base = SummedAreaTableView::trilinear(corners_.data() + v.corner_index(ci, cj, ck), strides, t);
+          nodes[z * slab + j * nx + i] = float(p[j * nx + i] - base);
         }
       }
     });

@@ -112,7 +112,6 @@ struct SummedAreaTableView {
            prefix_difference<2>(vec3(hi.x, lo.y, 0.0f), lo.z, hi.z) + prefix_difference<2>(lo, lo.z, hi.z);
   }
 
- private:
   // Trilinear interpolation of the 8 values at n + {0, 1} strides.
   template <class T>
   PENUMBRA_HD PENUMBRA_FORCE_INLINE static double trilinear(const T* n, const std::int64_t (&s)[3],
@@ -126,6 +125,7 @@ struct SummedAreaTableView {
     const double y1 = x01 + f[1] * (x11 - x01);
     return y0 + f[2] * (y1 - y0);
   }
+ private:
   // Over the 4 columns at n + {0, sa} + {0, sb}: the value interpolated
   // along the column (stride s) at cell h, fraction fh, minus that at cell l,
   // fraction fl; then bilinear across the columns with fractions fa, fb.
