@@ -56,7 +56,9 @@ void SummedAreaTable::integrate() {
         for (std::int64_t i = first; i < last; ++i) out[j * nx + i] += out[(j - 1) * nx + i];
       }
     });
-    for (std::int64_t n = 0; n < slab; ++n) out[n] += below[n];
+    parallel_for(0, ny, [&](std::int64_t first, std::int64_t last) {
+      for (std::int64_t n = first * nx; n < last * nx; ++n) out[n] += below[n];
+    });
   };
   // The block corners of one z layer from the prefix sums of its node slab.
   auto take_corners = [&](std::int64_t cz, const double* p) {
