@@ -6,6 +6,7 @@
 #include "penumbra/techniques/sat_common/table_dependencies.h"
 #include "penumbra/techniques/sat_common/visibility_cache.h"
 
+#include <limits>
 #include <vector>
 
 namespace penumbra {
@@ -28,42 +29,54 @@ class FilteredSat final : public Technique {
     // or intensity, a floor plane or a render-only TF edit change none.
     const RenderView shadows = resources_.shadow_view(scene);
     ExtinctionInputs inputs = extinction_inputs(scene, shadows);
-    std::vector<LightPlacement> placements = light_placements(scene.lights());
     const double resolution = params.number("sat_resolution");
-    const bool same_extinction = tables_built_ && inputs == inputs_ && resolution == table_resolution_;
-    if (!same_extinction || placements != placements_) {
-      tables_built_ = false;
-      if (!same_extinction) caches_.clear();
-      rebuilds_ += std::uint64_t(tables_.build(shadows, scene.lights(), voxel / float(resolution), same_extinction));
-      tables_built_ = true;
-      inputs_ = std::move(inputs);
-      table_resolution_ = resolution;
+    const float cell = voxel / float(resolution);
+    std::vector<LightTables::Placement> placements = LightTables::plan(scene.lights(), cell);
+    const bool same_extinction = built_ && inputs == inputs_ && resolution == table_resolution_;
+    if (!same_extinction) caches_.clear();
+    std::vector<LightTables::Placement> previous = std::move(placements_);
+    placements_ = placements;
+    built_ = false;
+    const bool cache = params.flag("shadow_cache");
+    cache_tolerance_ = float(params.number("cache_tolerance"));
+    // The render reads the tables without the cache, in cache cells whose
+    // texels differ by more than the tolerance, and at plane hits (outside
+    // the cache's box); otherwise each table lives only while the caches of
+    // the lights that read it are filled (issue 22, the paper's section 7).
+    const bool keep_tables = !cache || cache_tolerance_ < 1.0f || !scene.planes().empty();
+    if (keep_tables && (!same_extinction || !tables_kept_ || previous != placements_)) {
+      rebuilds_ += std::uint64_t(tables_.build(shadows, scene.lights(), cell, same_extinction));
     }
-    std::vector<std::uint64_t> previous_ids = std::move(cached_table_ids_);
-    std::vector<LightPlacement> previous_placements = std::move(placements_);
-    placements_ = std::move(placements);
-    cached_table_ids_ = tables_.table_ids();
-    if (!params.flag("shadow_cache")) {
+    tables_kept_ = keep_tables;
+    if (!keep_tables && !same_extinction) tables_.clear();  // no table of the old extinction may be reused
+    inputs_ = std::move(inputs);
+    table_resolution_ = resolution;
+    if (!cache) {
       caches_.clear();
+      built_ = true;
       return;
     }
     // The caches depend on the tables and on every parameter but the table
     // resolution (already covered by the tables). A light keeps its cache
-    // while it reads the same table from the same place.
+    // while it reads a table of the same placement (from the same extinction).
     ParameterValues cache_params = params;
     cache_params.set("sat_resolution", params.table().at("sat_resolution").default_value);
     cache_params.set("cache_tolerance", params.table().at("cache_tolerance").default_value);  // read-time only
-    cache_tolerance_ = float(params.number("cache_tolerance"));
-    auto stale = [&](std::size_t i) {
-      return i >= previous_ids.size() || previous_ids[i] != cached_table_ids_[i] ||
-             !(previous_placements[i] == placements_[i]);
-    };
-    const FilteredVisibility direct{tables_.lookups().data(), filter_};
+    auto stale = [&](std::size_t i) { return i >= previous.size() || !(previous[i] == placements_[i]); };
     rebuilds_ += std::uint64_t(caches_.update(
-        tables_.lookups().size(), scene.volume().world_box(),
+        placements_.size(), scene.volume().world_box(),
         visibility_cache_dims(scene.volume().dims(), float(params.number("cache_resolution"))), cache_params,
-        [&](std::size_t light) { return tables_.lookups()[light].kind != LightTableKind::None; }, stale,
-        [&](std::size_t light, vec3 p) { return direct.transmittance(int(light), p); }));
+        [&](std::size_t light) { return placements_[light].kind != LightTableKind::None; }, stale,
+        [&](std::size_t light, vec3 p) {
+          return FilteredVisibility{tables_.lookups().data(), filter_}.transmittance(int(light), p);
+        },
+        [&](std::size_t light) {
+          // Without kept tables: build (or keep, for a light sharing the
+          // last one's CSAT) only the table this light reads.
+          if (!keep_tables) rebuilds_ += std::uint64_t(tables_.build(shadows, scene.lights(), cell, true, int(light)));
+        }));
+    if (!keep_tables) tables_.release(placements_.size());
+    built_ = true;
   }
 
   void render(const Scene& scene, Image& image, RenderStats* stats) override {
@@ -72,7 +85,10 @@ class FilteredSat final : public Technique {
     const Shading shading = scene.material().shading;
     const FilteredVisibility direct{tables_.lookups().data(), filter_};
     if (caches_.built()) {
-      const CachedFilteredVisibility cached{direct, caches_.views(), view.box, cache_tolerance_};
+      // Without the tables every lookup reads the cache (clamped to its box).
+      constexpr float kFar = std::numeric_limits<float>::max();
+      const Box3 tables_box = tables_kept_ ? view.box : Box3{vec3(-kFar), vec3(kFar)};
+      const CachedFilteredVisibility cached{direct, caches_.views(), tables_box, cache_tolerance_};
       render_lit(view, cached, shading, image, stats);
     } else {
       render_lit(view, direct, shading, image, stats);
@@ -88,10 +104,10 @@ class FilteredSat final : public Technique {
   SceneResources resources_;
   ShadowFilter filter_;
   LightTables tables_;
-  bool tables_built_ = false;
-  ExtinctionInputs inputs_;                   // what the tables were built from
-  std::vector<LightPlacement> placements_;    // the lights of the last prepare
-  std::vector<std::uint64_t> cached_table_ids_;  // the table each light read then
+  bool built_ = false;        // the last prepare finished
+  bool tables_kept_ = false;  // tables_ holds every light's table (else none)
+  ExtinctionInputs inputs_;   // what the tables and caches were built from
+  std::vector<LightTables::Placement> placements_;  // per light: the table it read in the last prepare
   double table_resolution_ = 0.0;
   LightVisibilityCaches caches_;  // one per light with a table
   float cache_tolerance_ = 1.0f;
@@ -120,7 +136,8 @@ TechniqueInfo filtered_sat_info() {
                               "shadow cache grid size as a fraction of the data grid"),
           ParameterSpec::real("cache_tolerance", 0.1, 0.0, 1.0,
                               "cache cells whose texels differ by more than this read the tables instead "
-                              "(1 = always the cache)"),
+                              "(1 = always the cache: then, without a floor plane, each light's table is "
+                              "released once its cache is filled)"),
           ParameterSpec::real("shadow_density_scale", 1.0, 0.0, 100.0,
                               "multiplies the filtered optical depth (0 = unshadowed)"),
       }},

@@ -34,7 +34,13 @@
 //            position (never for a colour, an intensity, a floor plane or a
 //            render-only TF edit); then, with the cache, one transmittance
 //            grid per light, rebuilt when its table is, or when the filter,
-//            kernel, offset, density scale or cache resolution change
+//            kernel, offset, density scale or cache resolution change.
+//            Tables are float residuals against double block corners
+//            (summed_area_table.h). When the render reads no table (the
+//            cache on, cache_tolerance 1, no floor plane), each light's
+//            table is built just before its cache and released after it
+//            (the paper's section 7), so memory holds the caches and at
+//            most one table; a light that moves gets its table rebuilt then
 //   render:  one ray-casting pass; per lit sample one cache read per light,
 //            or one table lookup (4 column sums for the box, 81 for the
 //            Gaussian) where the cache cell is not smooth; points outside

@@ -7,6 +7,7 @@
 #include "penumbra/techniques/filtered_sat/light_tables.h"
 #include "penumbra/techniques/filtered_sat/shadow_filter.h"
 #include "penumbra/techniques/registry.h"
+#include "penumbra/techniques/sat_common/visibility_cache.h"
 #include "test_scene.h"
 
 #include <gtest/gtest.h>
@@ -231,6 +232,77 @@ TEST(FilteredSat, OnlyWhatATableDependsOnRebuildsIt) {
     t->prepare(scene, params);
     EXPECT_EQ(t->rebuilds(), moved + tables + caches) << technique;
   }
+}
+
+// Issue 22, memory: with the cache read everywhere (cache_tolerance 1) and
+// no floor, nothing reads the tables at render time, so each table lives
+// only while its lights' caches are filled: what stays is one float cache
+// per light, cache_resolution^3 * 4 bytes per voxel per light (0.5 bytes at
+// the default 0.5), 16 MiB for a 256^3 volume with a directional and a
+// point light (the issue's target: 32 MiB). The image is that of the kept
+// tables at the same settings; a light that moves gets its table rebuilt
+// (and only its cache), a colour change rebuilds nothing; a floor or a
+// tolerance below 1 brings the tables back.
+TEST(FilteredSat, TablesAreReleasedOnceTheCachesAreFilled) {
+  Scene scene = lit_spheres();
+  Light point;
+  point.type = LightType::Point;
+  point.position = vec3(-30.0f, -40.0f, 45.0f);
+  point.intensity = 4500.0f;
+  scene.set_lights({scene.lights()[0], point});
+  const TechniqueInfo& info = find_technique("filtered-sat");
+  ParameterValues released(info.parameters);
+  released.set("cache_tolerance", 1.0);
+  auto t = info.create();
+  t->prepare(scene, released);
+  EXPECT_EQ(t->rebuilds(), 4u);  // two tables, two caches
+  const ivec3 dims = visibility_cache_dims(scene.volume().dims(), 0.5f);
+  const std::uint64_t cache_bytes = std::uint64_t(dims.x) * dims.y * dims.z * sizeof(float);
+  EXPECT_EQ(t->aux_bytes(), 2 * cache_bytes);
+  const ivec3 data = scene.volume().dims();
+  const double per_voxel_per_light = double(cache_bytes) / (double(data.x) * data.y * data.z);
+  const double at_256 = 2.0 * per_voxel_per_light * 256.0 * 256.0 * 256.0 / (1024.0 * 1024.0);
+  std::printf("released: %.3f bytes per voxel per light, %.1f MiB for 256^3 with two lights\n", per_voxel_per_light,
+              at_256);
+  EXPECT_LT(at_256, 32.0);
+  Image image;
+  t->render(scene, image);
+
+  // The same image from kept tables (a tolerance just below 1 keeps them;
+  // no cache cell's texels differ that much here).
+  ParameterValues almost = released;
+  almost.set("cache_tolerance", 0.9999);
+  auto kept = info.create();
+  kept->prepare(scene, almost);
+  EXPECT_GT(kept->aux_bytes(), 2 * cache_bytes);
+  Image kept_image;
+  kept->render(scene, kept_image);
+  EXPECT_LT(rmse(image, kept_image), 1e-6);
+  // A floor is lit from the tables: they stay.
+  Scene with_floor = scene;
+  with_floor.set_planes({Plane{vec3(0.0f, 0.0f, -30.0f), vec3(0.0f, 0.0f, 1.0f), vec3(0.5f)}});
+  auto floor = info.create();
+  floor->prepare(with_floor, released);
+  EXPECT_EQ(floor->aux_bytes(), kept->aux_bytes());
+
+  std::vector<Light> lights = scene.lights();
+  lights[0].color = vec3(0.3f, 0.6f, 1.0f);
+  scene.set_lights(lights);
+  t->prepare(scene, released);
+  EXPECT_EQ(t->rebuilds(), 4u);
+  lights[1].position += vec3(6.0f, 0.0f, 0.0f);
+  scene.set_lights(lights);
+  t->prepare(scene, released);
+  EXPECT_EQ(t->rebuilds(), 6u);  // that light's table and cache
+  EXPECT_EQ(t->aux_bytes(), 2 * cache_bytes);
+  t->render(scene, image);
+  EXPECT_LT(rmse(image, render_with(scene, "filtered-sat", {{"cache_tolerance", 1.0}})), 1e-6);
+
+  // Back to the default tolerance: the tables are needed again.
+  t->prepare(scene, ParameterValues(info.parameters));
+  EXPECT_GT(t->aux_bytes(), 2 * cache_bytes);
+  t->render(scene, image);
+  EXPECT_LT(rmse(image, render_with(scene, "filtered-sat")), 1e-6);
 }
 
 // A time series re-prepares on a time-step change with no other action: the

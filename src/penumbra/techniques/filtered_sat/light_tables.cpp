@@ -15,38 +15,82 @@ void LightTables::clear() {
   light_table_ids_.clear();
 }
 
-int LightTables::build(const RenderView& shadows, const std::vector<Light>& lights, float cell, bool reuse) {
-  // Plan: one CSAT per orthodirectional group, one SSAT per point light,
-  // and which table each light reads.
+void LightTables::release(std::size_t light_count) {
+  clear();
+  lookups_.assign(light_count, LightTableLookup{});
+  light_table_ids_.assign(light_count, 0);
+}
+
+namespace {
+
+// The tables the lights need (one CSAT per orthodirectional group, one SSAT
+// per point light), which one each light reads (-1: none), and the
+// grouping of the directional lights (their indices in `directional`).
+struct TablePlan {
+  std::vector<LightTables::Placement> wanted;
+  std::vector<int> light_table;
   std::vector<int> directional;
+  OrthodirectionalGrouping grouping;
+};
+
+TablePlan plan_tables(const std::vector<Light>& lights, float cell) {
+  TablePlan plan;
   std::vector<vec3> to_light;
   for (std::size_t i = 0; i < lights.size(); ++i) {
     const Light& l = lights[i];
     if (l.type == LightType::Directional || l.type == LightType::Distant) {
-      directional.push_back(int(i));
+      plan.directional.push_back(int(i));
       to_light.push_back(-l.direction);
     }
   }
-  const OrthodirectionalGrouping grouping = group_orthodirectional(to_light);
-  std::vector<Placement> wanted;
-  std::vector<int> light_table(lights.size(), -1);
-  for (const OrthodirectionalGroup& g : grouping.groups) {
-    Placement p;
+  plan.grouping = group_orthodirectional(to_light);
+  plan.light_table.assign(lights.size(), -1);
+  for (const OrthodirectionalGroup& g : plan.grouping.groups) {
+    LightTables::Placement p;
     p.kind = LightTableKind::Cartesian;
     for (int a = 0; a < 3; ++a) p.axes[a] = g.axes[a];
     p.cell = cell;
-    wanted.push_back(p);
+    plan.wanted.push_back(p);
   }
-  for (std::size_t m = 0; m < directional.size(); ++m) light_table[std::size_t(directional[m])] = grouping.members[m].group;
+  for (std::size_t m = 0; m < plan.directional.size(); ++m) {
+    plan.light_table[std::size_t(plan.directional[m])] = plan.grouping.members[m].group;
+  }
   for (std::size_t i = 0; i < lights.size(); ++i) {
     const Light& l = lights[i];
     if (l.type != LightType::Point && l.type != LightType::Sphere && l.type != LightType::Disk) continue;
-    Placement p;
+    LightTables::Placement p;
     p.kind = LightTableKind::Spherical;
     p.light = l.position;
     p.cell = cell;
-    light_table[i] = int(wanted.size());
-    wanted.push_back(p);
+    plan.light_table[i] = int(plan.wanted.size());
+    plan.wanted.push_back(p);
+  }
+  return plan;
+}
+
+}  // namespace
+
+std::vector<LightTables::Placement> LightTables::plan(const std::vector<Light>& lights, float cell) {
+  const TablePlan p = plan_tables(lights, cell);
+  std::vector<Placement> per_light(lights.size());
+  for (std::size_t i = 0; i < lights.size(); ++i) {
+    if (p.light_table[i] >= 0) per_light[i] = p.wanted[std::size_t(p.light_table[i])];
+  }
+  return per_light;
+}
+
+int LightTables::build(const RenderView& shadows, const std::vector<Light>& lights, float cell, bool reuse,
+                       int only_light) {
+  TablePlan plan = plan_tables(lights, cell);
+  std::vector<Placement>& wanted = plan.wanted;
+  std::vector<int>& light_table = plan.light_table;
+  const std::vector<int>& directional = plan.directional;
+  const OrthodirectionalGrouping& grouping = plan.grouping;
+  if (only_light >= 0) {
+    // Only the table of that light: the others' lights read none.
+    const int keep = light_table[std::size_t(only_light)];
+    for (int& t : light_table) t = t == keep && keep >= 0 ? 0 : -1;
+    wanted = keep >= 0 ? std::vector<Placement>{wanted[std::size_t(keep)]} : std::vector<Placement>{};
   }
 
   // Keep the old tables that are wanted again (each at most once); release
@@ -89,13 +133,13 @@ int LightTables::build(const RenderView& shadows, const std::vector<Light>& ligh
       tables_.push_back(std::move(old[std::size_t(from_old[w])]));
       ids_.push_back(old_ids[std::size_t(from_old[w])]);
     } else if (p.kind == LightTableKind::Cartesian) {
-      tables_.push_back(
-          build_extinction_table(shadows, cartesian[w], fmt::format("filtered-sat CSAT {}", w), samples));
+      tables_.push_back(build_extinction_table(
+          shadows, cartesian[w], fmt::format("filtered-sat CSAT {} (sat_resolution sets its size)", w), samples));
       ids_.push_back(next_id_++);
       ++built;
     } else {
-      tables_.push_back(build_spherical_extinction_table(shadows, spherical[w],
-                                                         fmt::format("filtered-sat SSAT {}", w), samples));
+      tables_.push_back(build_spherical_extinction_table(
+          shadows, spherical[w], fmt::format("filtered-sat SSAT {} (sat_resolution sets its size)", w), samples));
       ids_.push_back(next_id_++);
       ++built;
     }
@@ -106,9 +150,10 @@ int LightTables::build(const RenderView& shadows, const std::vector<Light>& ligh
   light_table_ids_.assign(lights.size(), 0);
   for (std::size_t m = 0; m < directional.size(); ++m) {
     const OrthodirectionalMember& member = grouping.members[m];
+    if (light_table[std::size_t(directional[m])] < 0) continue;
     LightTableLookup& lookup = lookups_[std::size_t(directional[m])];
     lookup.kind = LightTableKind::Cartesian;
-    lookup.cartesian = cartesian[std::size_t(member.group)];
+    lookup.cartesian = cartesian[std::size_t(light_table[std::size_t(directional[m])])];
     lookup.axis = member.axis;
     lookup.sign = member.sign;
   }

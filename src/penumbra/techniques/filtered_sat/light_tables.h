@@ -39,26 +39,6 @@ PENUMBRA_HD inline float filtered_optical_depth(const LightTableLookup& light, c
 
 class LightTables {
  public:
-  // Builds every table the lights need from the shadow view's extinction,
-  // with cells of `cell` world units. With `reuse`, a table of the last
-  // build whose placement (a CSAT's frame, an SSAT's light position) and
-  // cell are the same is kept instead of rebuilt: pass it when the
-  // extinction (data, shadow TF, clip planes) did not change since. Tables
-  // no light needs any more are released before new ones are built. Returns
-  // how many tables it built. Throws OutOfMemoryBudget before allocating a
-  // table that does not fit.
-  int build(const RenderView& shadows, const std::vector<Light>& lights, float cell, bool reuse = false);
-  void clear();
-
-  // One per light of the last build, in the scene's order.
-  const std::vector<LightTableLookup>& lookups() const { return lookups_; }
-  // Per light: an id of the table it reads, new for every table built, so a
-  // light whose id did not change sees the same table as before.
-  const std::vector<std::uint64_t>& table_ids() const { return light_table_ids_; }
-  int table_count() const { return int(tables_.size()); }
-  std::uint64_t bytes() const;
-
- private:
   // What a table is built from, beside the extinction.
   struct Placement {
     LightTableKind kind = LightTableKind::None;
@@ -70,6 +50,39 @@ class LightTables {
              light == o.light && cell == o.cell;
     }
   };
+
+  // Per light, the placement of the table it reads (kind None: no table),
+  // without building anything: two lights with equal placements read one
+  // table, and a light whose placement did not change between two builds
+  // from the same extinction reads a table equal to the one before.
+  static std::vector<Placement> plan(const std::vector<Light>& lights, float cell);
+
+  // Builds every table the lights need from the shadow view's extinction,
+  // with cells of `cell` world units. With `reuse`, a table of the last
+  // build whose placement (a CSAT's frame, an SSAT's light position) and
+  // cell are the same is kept instead of rebuilt: pass it when the
+  // extinction (data, shadow TF, clip planes) did not change since. Tables
+  // no light needs any more are released before new ones are built. With
+  // `only_light` >= 0 only the table that light reads is built (or kept):
+  // the other lights' lookups have kind None, so that one table at a time
+  // lives while the shadow caches are filled (the paper's future work,
+  // section 7). Returns how many tables it built. Throws OutOfMemoryBudget
+  // before allocating a table that does not fit.
+  int build(const RenderView& shadows, const std::vector<Light>& lights, float cell, bool reuse = false,
+            int only_light = -1);
+  // Frees every table; `light_count` lookups of kind None remain.
+  void release(std::size_t light_count);
+  void clear();
+
+  // One per light of the last build, in the scene's order.
+  const std::vector<LightTableLookup>& lookups() const { return lookups_; }
+  // Per light: an id of the table it reads, new for every table built, so a
+  // light whose id did not change sees the same table as before.
+  const std::vector<std::uint64_t>& table_ids() const { return light_table_ids_; }
+  int table_count() const { return int(tables_.size()); }
+  std::uint64_t bytes() const;
+
+ private:
   std::vector<SummedAreaTable> tables_;
   std::vector<Placement> placements_;  // per table
   std::vector<std::uint64_t> ids_;     // per table

@@ -79,8 +79,8 @@ void fill_extinction_cells(SummedAreaTable& table, int samples_per_axis, float t
   parallel_for(0, rows, [&](std::int64_t first, std::int64_t last) {
     for (std::int64_t row = first; row < last; ++row) {
       const int j = int(row % cells.y), k = int(row / cells.y);
-      double* c = table.cell_row(j, k);
-      for (int i = 0; i < cells.x; ++i) c[i] = double(field(point(vec3(i, j, k) + 0.5f)));
+      float* c = table.cell_row(j, k);
+      for (int i = 0; i < cells.x; ++i) c[i] = field(point(vec3(i, j, k) + 0.5f));
     }
   });
   const int n = samples_per_axis;
@@ -93,11 +93,11 @@ void fill_extinction_cells(SummedAreaTable& table, int samples_per_axis, float t
     parallel_for(0, rows, [&](std::int64_t first, std::int64_t last) {
       for (std::int64_t row = first; row < last; ++row) {
         const int j = int(row % cells.y), k = int(row / cells.y);
-        const double* c = table.cell_row(j, k);
-        const double* ym = j > 0 ? table.cell_row(j - 1, k) : nullptr;
-        const double* yp = j + 1 < cells.y ? table.cell_row(j + 1, k) : nullptr;
-        const double* zm = k > 0 ? table.cell_row(j, k - 1) : nullptr;
-        const double* zp = k + 1 < cells.z ? table.cell_row(j, k + 1) : nullptr;
+        const float* c = table.cell_row(j, k);
+        const float* ym = j > 0 ? table.cell_row(j - 1, k) : nullptr;
+        const float* yp = j + 1 < cells.y ? table.cell_row(j + 1, k) : nullptr;
+        const float* zm = k > 0 ? table.cell_row(j, k - 1) : nullptr;
+        const float* zp = k + 1 < cells.z ? table.cell_row(j, k + 1) : nullptr;
         for (int i = 0; i < cells.x; ++i) {
           const double v = c[i];
           auto differs = [&](double w) { return std::abs(w - v) > double(tolerance); };
@@ -111,7 +111,7 @@ void fill_extinction_cells(SummedAreaTable& table, int samples_per_axis, float t
     parallel_for(0, rows, [&](std::int64_t first, std::int64_t last) {
       for (std::int64_t row = first; row < last; ++row) {
         const int j = int(row % cells.y), k = int(row / cells.y);
-        double* c = table.cell_row(j, k);
+        float* c = table.cell_row(j, k);
         for (int i = 0; i < cells.x; ++i) {
           if (!(refine[std::size_t(row * words + i / 64)] >> (i % 64) & 1)) continue;
           double sum = 0.0;
@@ -120,7 +120,7 @@ void fill_extinction_cells(SummedAreaTable& table, int samples_per_axis, float t
                            (float(s / (n * n)) + 0.5f) / float(n));
             sum += double(field(point(vec3(i, j, k) + sub)));
           }
-          c[i] = sum / double(n * n * n);
+          c[i] = float(sum / double(n * n * n));
         }
       }
     });
@@ -129,8 +129,8 @@ void fill_extinction_cells(SummedAreaTable& table, int samples_per_axis, float t
     for (std::int64_t row = first; row < last; ++row) {
       const int j = int(row % cells.y), k = int(row / cells.y);
       const double m = measure(j, k);
-      double* c = table.cell_row(j, k);
-      for (int i = 0; i < cells.x; ++i) c[i] *= m;
+      float* c = table.cell_row(j, k);
+      for (int i = 0; i < cells.x; ++i) c[i] = float(double(c[i]) * m);
     }
   });
 }

@@ -51,11 +51,18 @@ class LightVisibilityCaches {
   // `box` holding visibility(i, world), rebuilt when the parameters, the box
   // or the dims changed, when the light had none, or when stale(i) (its own
   // inputs changed). Caches of lights without one are released first, then
-  // each stale cache before its replacement is built. Returns how many
-  // caches it built.
+  // each stale cache before its replacement is built; before_build(i) runs
+  // just before light i's cache is built (to build what visibility(i, .)
+  // reads, one light at a time). Returns how many caches it built.
   template <class HasCache, class Stale, class Visibility>
   int update(std::size_t light_count, const Box3& box, ivec3 dims, const ParameterValues& params,
              const HasCache& has_cache, const Stale& stale, const Visibility& visibility) {
+    return update(light_count, box, dims, params, has_cache, stale, visibility, [](std::size_t) {});
+  }
+  template <class HasCache, class Stale, class Visibility, class BeforeBuild>
+  int update(std::size_t light_count, const Box3& box, ivec3 dims, const ParameterValues& params,
+             const HasCache& has_cache, const Stale& stale, const Visibility& visibility,
+             const BeforeBuild& before_build) {
     const bool all = !built_ || !(params == params_) || dims != dims_ || box.lower != box_.lower ||
                      box.upper != box_.upper;
     caches_.resize(light_count);
@@ -66,6 +73,7 @@ class LightVisibilityCaches {
     for (std::size_t i = 0; i < light_count; ++i) {
       if (!has_cache(i) || (caches_[i] && !all && !stale(i))) continue;
       caches_[i].reset();  // free the old cache first
+      before_build(i);
       caches_[i].emplace(build_visibility_cache(box, dims, [&](vec3 p) { return visibility(i, p); }));
       ++count;
     }
