@@ -107,5 +107,46 @@ TEST(ConeShadows, LightMovesRebuildOnlyTheCaches) {
   EXPECT_LT(rmse(cached, direct), 0.01);
 }
 
+// cone_angle_deg unset follows each light's size (cone_shadows.h); set, it
+// overrides it; a light's size change rebuilds its cache.
+TEST(ConeShadows, ConeAngleFollowsTheLightUnlessSet) {
+  Scene scene = spheres_over_floor(24);
+  const Light directional = scene.lights()[0];
+  Light distant = directional;
+  distant.type = LightType::Distant;
+  distant.angle_deg = 12.0f;
+  auto with = [&](const Light& light, double angle) {
+    Scene s = scene;
+    s.set_lights({light});
+    return angle < 0.0 ? render_with(s, "cone-shadows") : render_with(s, "cone-shadows", {{"cone_angle_deg", angle}});
+  };
+  const Image derived = with(distant, -1.0);
+  EXPECT_LT(rmse(derived, with(distant, 12.0)), 1e-6) << "unset: a uniform light's half-angle";
+  const Image overridden = with(distant, 2.0);
+  EXPECT_GT(rmse(overridden, derived), 1e-3) << "set: the knob, not the light";
+  EXPECT_LT(rmse(overridden, with(directional, 2.0)), 1e-6);
+  EXPECT_LT(rmse(with(directional, -1.0), with(directional, 5.0)), 1e-6) << "a directional light: 5 degrees";
+  Light gaussian = distant;
+  gaussian.profile = LightProfile::Gaussian;
+  gaussian.angle_deg = 4.0f;
+  const double equal_variance = glm::degrees(std::atan(2.0 * std::tan(glm::radians(4.0))));
+  EXPECT_LT(rmse(with(gaussian, -1.0), with(gaussian, equal_variance)), 1e-6) << "a Gaussian: tan = 2 tan(sigma)";
+
+  // One technique, the light shrinking: its cache follows.
+  const TechniqueInfo& info = find_technique("cone-shadows");
+  const ParameterValues params(info.parameters);
+  auto technique = info.create();
+  Scene s = scene;
+  s.set_lights({distant});
+  technique->prepare(s, params);
+  Light small = distant;
+  small.angle_deg = 2.0f;
+  s.set_lights({small});
+  technique->prepare(s, params);
+  Image image;
+  technique->render(s, image);
+  EXPECT_LT(rmse(image, overridden), 1e-6);
+}
+
 }  // namespace
 }  // namespace penumbra
