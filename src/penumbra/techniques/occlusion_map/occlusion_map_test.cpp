@@ -375,6 +375,30 @@ TEST(OcclusionMapRender, SoftShadowsApproachHardShadowsAsTheLightShrinks) {
   EXPECT_LE(last_umbra, 1.35 * hard_umbra);
 }
 
+// light_size_deg unset follows each light's size (a distant light's angle,
+// 3 degrees for a directional one); set, it overrides every light's size.
+TEST(OcclusionMapRender, LightSizeFollowsTheLightUnlessSet) {
+  Scene scene = lit_balls(32);
+  const Light directional = scene.lights()[0];
+  Light distant = directional;
+  distant.type = LightType::Distant;
+  distant.angle_deg = 10.0f;
+  const ParameterSettings common = {{"ambient_occlusion", false}, {"iso_value", 0.5}, {"shadows", std::string("soft")}};
+  auto with = [&](const Light& light, double size) {
+    Scene s = scene;
+    s.set_lights({light});
+    ParameterSettings p = common;
+    if (size >= 0.0) p["light_size_deg"] = size;
+    return render_with(s, "occlusion-map", p);
+  };
+  const Image derived = with(distant, -1.0);
+  EXPECT_LT(rmse(derived, with(distant, 10.0)), 1e-6) << "unset: the distant light's angle";
+  const Image overridden = with(distant, 1.0);
+  EXPECT_GT(rmse(overridden, derived), 1e-3) << "set: the knob, not the light";
+  EXPECT_LT(rmse(overridden, with(directional, 1.0)), 1e-6);
+  EXPECT_LT(rmse(with(directional, -1.0), with(directional, 3.0)), 1e-6) << "a directional light: 3 degrees";
+}
+
 // The map depends on the data only: iso-value and TF changes rebuild nothing;
 // the data and the map's own parameters do.
 TEST(OcclusionMapTechnique, RebuildsOnlyForDataClipPlanesAndMapParameters) {
