@@ -2,12 +2,16 @@
 
 #include "test_scene.h"
 
+#include "penumbra/analysis/image_metrics.h"
 #include "penumbra/scene/camera.h"
+
+#include <gtest/gtest.h>
 #include "penumbra/volume/volume.h"
 
 #include <cmath>
 #include <algorithm>
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace penumbra::testing {
@@ -83,6 +87,25 @@ float penumbra_width_10_90(const EdgeScene& edge, const Image& image, const Imag
     return -1.0e9;  // no crossing: a width no tolerance accepts
   };
   return float((crossing(0.9) - crossing(0.1)) * edge.pixel_size);
+}
+
+Image expect_knob_overrides_light(const Scene& scene, const std::string& technique, const ParameterSettings& common,
+                                  const std::string& knob, const Light& sized, double matching, const Light& plain,
+                                  double plain_default, double other) {
+  auto with = [&](const Light& light, std::optional<double> value) {
+    Scene s = scene;
+    s.set_lights({light});
+    ParameterSettings p = common;
+    if (value) p[knob] = *value;
+    return render_with(s, technique, p);
+  };
+  const Image derived = with(sized, std::nullopt);
+  EXPECT_LT(rmse(derived, with(sized, matching)), 1e-6) << knob << " unset: from the light";
+  const Image overridden = with(sized, other);
+  EXPECT_GT(rmse(overridden, derived), 1e-3) << knob << " set: the knob, not the light";
+  EXPECT_LT(rmse(overridden, with(plain, other)), 1e-6) << knob << " set: the light's size ignored";
+  EXPECT_LT(rmse(with(plain, std::nullopt), with(plain, plain_default)), 1e-6) << "a light without a size";
+  return overridden;
 }
 
 }  // namespace penumbra::testing

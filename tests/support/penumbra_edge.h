@@ -32,4 +32,14 @@ float penumbra_width_10_90(const EdgeScene& edge, const Image& image, const Imag
 // divisor above, the same unshadowed lighting for every technique.
 Image unshadowed_floor(const EdgeScene& edge);
 
+// A technique's softness knob (issue 18): unset (absent from `common`) it
+// follows the light `sized`, the same image as the knob set to `matching`;
+// set to `other` it overrides the light's size (the same image as the
+// sizeless `plain` light, a directional one, with the knob at `other`); and
+// `plain` with the knob unset equals the knob at `plain_default`.
+// Returns the image of `sized` with the knob at `other`.
+Image expect_knob_overrides_light(const Scene& scene, const std::string& technique, const ParameterSettings& common,
+                                  const std::string& knob, const Light& sized, double matching, const Light& plain,
+                                  double plain_default, double other);
+
 }  // namespace penumbra::testing

@@ -10,6 +10,7 @@
 #include "penumbra/techniques/occlusion_map/moment_pyramid.h"
 #include "penumbra/techniques/occlusion_map/occlusion_queries.h"
 #include "penumbra/techniques/registry.h"
+#include "penumbra_edge.h"
 #include "test_scene.h"
 
 #include <gtest/gtest.h>
@@ -384,19 +385,8 @@ TEST(OcclusionMapRender, LightSizeFollowsTheLightUnlessSet) {
   distant.type = LightType::Distant;
   distant.angle_deg = 10.0f;
   const ParameterSettings common = {{"ambient_occlusion", false}, {"iso_value", 0.5}, {"shadows", std::string("soft")}};
-  auto with = [&](const Light& light, double size) {
-    Scene s = scene;
-    s.set_lights({light});
-    ParameterSettings p = common;
-    if (size >= 0.0) p["light_size_deg"] = size;
-    return render_with(s, "occlusion-map", p);
-  };
-  const Image derived = with(distant, -1.0);
-  EXPECT_LT(rmse(derived, with(distant, 10.0)), 1e-6) << "unset: the distant light's angle";
-  const Image overridden = with(distant, 1.0);
-  EXPECT_GT(rmse(overridden, derived), 1e-3) << "set: the knob, not the light";
-  EXPECT_LT(rmse(overridden, with(directional, 1.0)), 1e-6);
-  EXPECT_LT(rmse(with(directional, -1.0), with(directional, 3.0)), 1e-6) << "a directional light: 3 degrees";
+  testing::expect_knob_overrides_light(scene, "occlusion-map", common, "light_size_deg", distant, 10.0, directional,
+                                       3.0, 1.0);
 }
 
 // The map depends on the data only: iso-value and TF changes rebuild nothing;
