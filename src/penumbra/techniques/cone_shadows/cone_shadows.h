@@ -28,7 +28,9 @@
 // explicit cone_angle_deg >= 0 applies to every light, overriding the above.
 // Under an opaque edge the paper's model gives a narrower penumbra than the
 // light's (exp of the mean extinction over the cube, not the mean
-// visibility), so equal angles are equal light sizes, not equal penumbrae.
+// visibility), so equal angles are equal light sizes, not equal penumbrae:
+// measured 0.64 of the light's 10-90 % width at 6 degrees, 0.61 at 12
+// (cone_shadows_test.cpp, EdgePenumbraScalesWithTheLightsAngle).
 //
 // Parameters
 //   cone_angle_deg        half-angle of the cone (< 0: from each light)
