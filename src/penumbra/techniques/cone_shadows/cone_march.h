@@ -13,9 +13,25 @@ struct ConeMarch {
   SummedAreaTableView table;
   CartesianTableGrid grid;  // volume-aligned
   Box3 box;                 // the volume box: the cone ends where its axis leaves it
-  float tan_half_angle = 0.0f;
+  float tan_half_angle = 0.0f;  // the cone of lights without a derived one
   float step = 1.0f;        // world units
   float density_scale = 1.0f;
+  // The cone derived from each light's size (cone_shadows.h), for the first
+  // kDerivedLights lights: light_tan >= 0 a fixed tan(half-angle) (distant
+  // lights), light_radius > 0 a sphere or disk whose cone follows the
+  // distance (r / sqrt(d^2 - r^2)); neither: tan_half_angle.
+  static constexpr int kDerivedLights = 8;
+  float light_tan[kDerivedLights] = {-1.0f, -1.0f, -1.0f, -1.0f, -1.0f, -1.0f, -1.0f, -1.0f};
+  float light_radius[kDerivedLights] = {};
+
+  // tan(half-angle) of the cone toward light `light` at `distance`.
+  PENUMBRA_HD float cone_tan(int light, float distance) const {
+    if (light < 0 || light >= kDerivedLights) return tan_half_angle;
+    if (light_tan[light] >= 0.0f) return light_tan[light];
+    const float r = light_radius[light];
+    if (r > 0.0f) return distance > 1.001f * r ? r / glm::sqrt(distance * distance - r * r) : 22.4f;  // 87 degrees
+    return tan_half_angle;
+  }
 
   template <class Mirror> ConeMarch on_device(Mirror& m) const {
     ConeMarch d = *this;
@@ -23,15 +39,19 @@ struct ConeMarch {
     return d;
   }
 
-  // Optical depth from p toward a light `distance` away along unit `to_light`.
+  // Optical depth from p toward a light `distance` away along unit
+  // `to_light`, through the cone of tan(half-angle) `tan_half`.
   PENUMBRA_HD float optical_depth(vec3 p, vec3 to_light, float distance) const {
+    return optical_depth(p, to_light, distance, tan_half_angle);
+  }
+  PENUMBRA_HD float optical_depth(vec3 p, vec3 to_light, float distance, float tan_half) const {
     const Interval chord = intersect_box(Ray{p, to_light}, box, 0.0f, distance);
     if (chord.empty()) return 0.0f;
     double depth = 0.0;
     for (float t = 0.0f; t < chord.t1; t += step) {
       const float length = glm::min(step, chord.t1 - t);
       const float middle = t + 0.5f * length;
-      const float half = glm::max(middle * tan_half_angle, 0.5f * length);
+      const float half = glm::max(middle * tan_half, 0.5f * length);
       const vec3 q = grid.grid_from_world(p + middle * to_light);
       const float h = half / grid.cell;
       const double cube = 8.0 * double(half) * half * half;
@@ -39,12 +59,14 @@ struct ConeMarch {
     }
     return float(glm::max(depth, 0.0));
   }
-  PENUMBRA_HD float transmittance(vec3 p, const LightSample& ls) const {
+  PENUMBRA_HD float transmittance(int light, vec3 p, const LightSample& ls) const {
     // A light that sends nothing here (an environment light) needs no cone.
     if (ls.radiance == vec3(0.0f)) return 1.0f;
-    return exp_nonpositive(-density_scale * optical_depth(p, ls.to_light, ls.distance));
+    return exp_nonpositive(-density_scale * optical_depth(p, ls.to_light, ls.distance, cone_tan(light, ls.distance)));
   }
-  PENUMBRA_HD vec3 operator()(int, vec3 p, const LightSample& ls) const { return vec3(transmittance(p, ls)); }
+  PENUMBRA_HD vec3 operator()(int light, vec3 p, const LightSample& ls) const {
+    return vec3(transmittance(light, p, ls));
+  }
 };
 
 // Per-light caches inside the volume box, the cone march elsewhere.

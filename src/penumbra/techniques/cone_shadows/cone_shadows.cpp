@@ -12,6 +12,27 @@
 namespace penumbra {
 namespace {
 
+// The cone of lights without a size (directional, point), and of every light
+// with cone_angle_deg unset before issue 18.
+constexpr double kDefaultConeAngleDeg = 5.0;
+
+// The per-light cones derived from the lights' sizes (cone_shadows.h).
+void derive_cones(const std::vector<Light>& lights, ConeMarch& cone) {
+  for (std::size_t i = 0; i < lights.size() && i < std::size_t(ConeMarch::kDerivedLights); ++i) {
+    const Light& l = lights[i];
+    if (l.type == LightType::Distant) {
+      const float x = glm::tan(glm::radians(glm::min(l.angle_deg, 89.0f)));
+      const float y = glm::tan(glm::radians(glm::min(l.spread_y_deg(), 89.0f)));
+      const float rms = glm::sqrt(0.5f * (x * x + y * y));
+      // A uniform cone is its own cone; a Gaussian of spread tan(sigma) the
+      // uniform disk of the same variance (radius 2 tan(sigma)).
+      cone.light_tan[i] = l.profile == LightProfile::Uniform ? x : 2.0f * rms;
+    } else if ((l.type == LightType::Sphere || l.type == LightType::Disk) && l.radius > 0.0f) {
+      cone.light_radius[i] = l.radius;
+    }
+  }
+}
+
 class ConeShadows final : public Technique {
  public:
   void prepare(const Scene& scene, const ParameterValues& params) override {
@@ -22,12 +43,15 @@ class ConeShadows final : public Technique {
       ++rebuilds_;
     }
     const float voxel = scene.volume().view().min_spacing();
+    const double angle = params.number("cone_angle_deg");
     cone_ = ConeMarch{table_.view(),
                       table_.grid(),
                       scene.volume().world_box(),
-                      float(std::tan(glm::radians(params.number("cone_angle_deg")))),
+                      float(std::tan(glm::radians(angle < 0.0 ? kDefaultConeAngleDeg : angle))),
                       float(params.number("step_voxels")) * voxel,
                       float(params.number("shadow_density_scale"))};
+    const bool derived = angle < 0.0;
+    if (derived) derive_cones(scene.lights(), cone_);
     if (!params.flag("shadow_cache")) {
       caches_.clear();
       return;
@@ -38,15 +62,24 @@ class ConeShadows final : public Technique {
     // light's cache is rebuilt when it moves (or the table or parameters
     // change), the others are kept.
     std::vector<LightPlacement> placements = light_placements(scene.lights());
-    if (caches_.current(cache_params) && placements == placements_) return;
+    // With derived cones a light's size is part of its cone: a change of it
+    // rebuilds that light's cache like a move.
+    std::vector<vec4> sizes;
+    for (const Light& l : scene.lights()) {
+      sizes.push_back(derived ? vec4(l.angle_deg, l.spread_y_deg(), l.radius, float(l.profile)) : vec4(0.0f));
+    }
+    if (caches_.current(cache_params) && placements == placements_ && sizes == sizes_) return;
     const std::vector<Light>& lights = scene.lights();
     const ConeMarch cone = cone_;
     rebuilds_ += std::uint64_t(caches_.update(
         lights.size(), cone.box, visibility_cache_dims(scene.volume().dims(), float(params.number("cache_resolution"))),
         cache_params, [&](std::size_t i) { return lights[i].type != LightType::Environment; },
-        [&](std::size_t i) { return i >= placements_.size() || !(placements[i] == placements_[i]); },
-        [&](std::size_t i, vec3 p) { return cone.transmittance(p, sample_light(lights[i], p)); }));
+        [&](std::size_t i) {
+          return i >= placements_.size() || !(placements[i] == placements_[i]) || sizes[i] != sizes_[i];
+        },
+        [&](std::size_t i, vec3 p) { return cone.transmittance(int(i), p, sample_light(lights[i], p)); }));
     placements_ = std::move(placements);
+    sizes_ = std::move(sizes);
   }
 
   void render(const Scene& scene, Image& image, RenderStats* stats) override {
@@ -71,6 +104,7 @@ class ConeShadows final : public Technique {
   ConeMarch cone_;
   LightVisibilityCaches caches_;
   std::vector<LightPlacement> placements_;  // what the caches were built for
+  std::vector<vec4> sizes_;                 // and the lights' sizes (with derived cones)
   std::uint64_t rebuilds_ = 0;
 };
 
@@ -81,7 +115,9 @@ TechniqueInfo cone_shadows_info() {
       "cone-shadows",
       "soft shadows from cones of growing cubes in a volume-aligned SAT (Schlegel et al. 2011)",
       ParameterTable{{
-          ParameterSpec::real("cone_angle_deg", 5.0, 0.0, 45.0, "half-angle of the shadow cone in degrees"),
+          ParameterSpec::real("cone_angle_deg", -1.0, -1.0, 45.0,
+                              "half-angle of the shadow cone in degrees (< 0 = from each light's size; 5 for "
+                              "directional and point lights)"),
           ParameterSpec::real("step_voxels", 4.0, 0.5, 64.0, "cone step length in voxels"),
           ParameterSpec::real("sat_resolution", 1.0, 0.1, 2.0, "summed-area table cells per voxel along each axis"),
           ParameterSpec::flag("shadow_cache", true, "store each light's transmittance on a grid instead of marching cones per sample"),

@@ -58,6 +58,13 @@ GaussianLight gaussian_light(const Light& light, const CameraView& camera, vec3 
     } else {
       variance = vec2(0.25f * tx * tx);
     }
+  } else if ((light.type == LightType::Sphere || light.type == LightType::Disk) && light.radius > 0.0f) {
+    // The disk the light subtends from the box centre, at distance D from
+    // its centre: tan = r / sqrt(D^2 - r^2), variance tan^2 / 4 per axis as
+    // for a uniform cone (a disk as if seen face on).
+    const float dist = glm::length(box_center - light.position), r = light.radius;
+    const float t = dist > 1.001f * r ? r / std::sqrt(dist * dist - r * r) : std::tan(glm::radians(89.0f));
+    variance = vec2(0.25f * t * t);
   }
   if (variance.x <= 0.0f && variance.y <= 0.0f) return g;
   // Jacobian of w -> lateral slope of (d + w) at w = 0, for w in the plane of

@@ -23,8 +23,12 @@
 //   distant, profile uniform: the cone's disk of radius tan(angle) has
 //     variance tan(angle)^2 / 4 per axis, carried the same way;
 //   directional: Sigma = 0 (hard shadows);
-//   point, sphere, disk: a directional light from the light's position toward
-//     the box centre (the method has only distant lights);
+//   point, sphere, disk: a distant light from the light's position toward
+//     the box centre (the method has only distant lights); a point light is
+//     directional (Sigma = 0), a sphere or disk of radius r at distance D
+//     from the box centre the uniform cone of the angle it subtends there,
+//     tan = r / sqrt(D^2 - r^2) (the box centre as the one representative
+//     receiver: the method's light is the same for every slab and pixel);
 //   environment: no buffer (they carry no radiance in the shared shading).
 // Lights must come from behind the viewer: a light more than 85 degrees from
 // the view direction is clamped to 85 degrees (the method cannot represent it);

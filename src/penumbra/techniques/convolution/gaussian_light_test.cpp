@@ -125,5 +125,30 @@ TEST(GaussianLight, CovarianceMatchesThePathTracersLightSamples) {
   EXPECT_GT(std::abs(cov[1][0] - mirrored), 10.0 * tol(sxx, syy, sxy));
 }
 
+// A sphere or disk light is the uniform cone it subtends from the box centre.
+TEST(GaussianLight, SphereAndDiskLightsAreTheConeTheySubtendFromTheBoxCentre) {
+  const CameraView cam = camera_along(vec3(0.2f, -0.3f, -1.0f));
+  const vec3 centre(1.0f, 2.0f, 3.0f);
+  const float distance = 50.0f, radius = 5.0f;
+  Light cone;
+  cone.type = LightType::Distant;
+  cone.direction = cam.forward;
+  cone.angle_deg = glm::degrees(std::atan(radius / std::sqrt(distance * distance - radius * radius)));
+  const GaussianLight expected = gaussian_light(cone, cam, centre, LightOverride{});
+  EXPECT_GT(expected.covariance[0][0], 1e-3f);
+  for (LightType type : {LightType::Sphere, LightType::Disk}) {
+    Light l;
+    l.type = type;
+    l.radius = radius;
+    l.position = centre - distance * cam.forward;
+    l.direction = cam.forward;
+    const GaussianLight g = gaussian_light(l, cam, centre, LightOverride{});
+    for (int i = 0; i < 2; ++i)
+      for (int j = 0; j < 2; ++j) EXPECT_NEAR(g.covariance[i][j], expected.covariance[i][j], 1e-6f);
+    l.radius = 0.0f;  // a point light: hard
+    EXPECT_EQ(gaussian_light(l, cam, centre, LightOverride{}).covariance, glm::mat2(0.0f));
+  }
+}
+
 }  // namespace
 }  // namespace penumbra

@@ -10,6 +10,10 @@
 namespace penumbra {
 namespace {
 
+// The angular radius of directional and point lights when light_size_deg is
+// unset (its default before issue 18).
+constexpr float kDefaultLightSizeDeg = 3.0f;
+
 ShadowMode shadow_mode(const std::string& name) {
   if (name == "hard") return ShadowMode::Hard;
   if (name == "soft") return ShadowMode::Soft;
@@ -47,7 +51,9 @@ class OcclusionMap final : public Technique {
     ao_combine_ = combine == "mean" ? AoCombine::Mean : (combine == "product" ? AoCombine::Product : AoCombine::Max);
     ao_offset_ = float(params.number("ao_offset"));
     ao_on_lights_ = params.flag("ao_lights");
-    default_spread_ = std::tan(glm::radians(float(params.number("light_size_deg"))));
+    const float size = float(params.number("light_size_deg"));
+    default_spread_ = std::tan(glm::radians(size < 0.0f ? kDefaultLightSizeDeg : size));
+    forced_spread_ = size < 0.0f ? -1.0f : default_spread_;
   }
 
   void render(const Scene& scene, Image& image, RenderStats* stats) override {
@@ -77,6 +83,7 @@ class OcclusionMap final : public Technique {
     setup.queries.ao_offset = ao_offset_;
     setup.queries.ao_combine = ao_combine_;
     setup.queries.default_spread = default_spread_;
+    setup.queries.forced_spread = forced_spread_;
     const vec2 range = pyramid_.value_range();
     setup.normalise = ValueNormalisation{range.x, range.y > range.x ? 1.0f / (range.y - range.x) : 1.0f};
     setup.iso = iso_;
@@ -112,6 +119,7 @@ class OcclusionMap final : public Technique {
   float ao_offset_ = 2.0f;
   bool ao_on_lights_ = true;
   float default_spread_ = 0.0f;
+  float forced_spread_ = -1.0f;
 };
 
 }  // namespace
@@ -134,8 +142,9 @@ TechniqueInfo occlusion_map_info() {
           ParameterSpec::real("ao_offset", 2.0, 0.0, 8.0,
                               "AO sample distance from the surface, in Gaussian sigmas of each level"),
           ParameterSpec::flag("ao_lights", true, "AO also darkens the lights, not only the ambient term"),
-          ParameterSpec::real("light_size_deg", 3.0, 0.0, 45.0,
-                              "angular radius of directional and point lights for soft shadows"),
+          ParameterSpec::real("light_size_deg", -1.0, -1.0, 45.0,
+                              "angular radius of every light for soft shadows (< 0 = each light's own size; "
+                              "3 for directional and point lights)"),
           ParameterSpec::integer("moments", 2, 2, 4, "2 (Chebyshev bound, the paper) or 4 (Hamburger bound)"),
           ParameterSpec::real("resolution", 0.5, 0.125, 1.0, "occlusion map level 0 as a fraction of the data grid"),
           ParameterSpec::integer("kernel_size", 5, 3, 15, "taps of level 0's Gaussian at level-0 resolution (odd)"),

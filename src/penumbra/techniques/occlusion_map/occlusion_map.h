@@ -27,9 +27,15 @@
 //                      in that level's Gaussian sigmas
 //   ao_lights          AO also darkens the lights (the paper's figures), not
 //                      only the ambient term
-//   light_size_deg     angular radius used for soft shadows of directional and
-//                      point lights (distant, sphere and disk lights use their
-//                      own size)
+//   light_size_deg     angular radius of the lights for soft shadows. Unset
+//                      (< 0, the default): each light's own size
+//                      (occlusion_queries.h light_spread: a distant light's
+//                      tan(angle_deg), the RMS of both spreads for an
+//                      anisotropic Gaussian; a sphere's or disk's
+//                      r / sqrt(d^2 - r^2) from the shaded point at distance
+//                      d, so the cone just contains the sphere) and 3 degrees
+//                      for directional and point lights. Set (>= 0): that
+//                      radius for every light, overriding their sizes
 //   moments            2 (Chebyshev, the paper) or 4 (Hamburger bound)
 //   resolution         level 0 grid as a fraction of the data grid
 //   kernel_size        taps of level 0's Gaussian at level-0 resolution (odd)

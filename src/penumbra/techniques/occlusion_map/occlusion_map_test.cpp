@@ -10,6 +10,7 @@
 #include "penumbra/techniques/occlusion_map/moment_pyramid.h"
 #include "penumbra/techniques/occlusion_map/occlusion_queries.h"
 #include "penumbra/techniques/registry.h"
+#include "penumbra_edge.h"
 #include "test_scene.h"
 
 #include <gtest/gtest.h>
@@ -372,6 +373,19 @@ TEST(OcclusionMapRender, SoftShadowsApproachHardShadowsAsTheLightShrinks) {
   EXPECT_LT(last_rmse, 0.7 * shadow);
   EXPECT_GT(last_umbra, 0.85 * hard_umbra);
   EXPECT_LE(last_umbra, 1.35 * hard_umbra);
+}
+
+// light_size_deg unset follows each light's size (a distant light's angle,
+// 3 degrees for a directional one); set, it overrides every light's size.
+TEST(OcclusionMapRender, LightSizeFollowsTheLightUnlessSet) {
+  Scene scene = lit_balls(32);
+  const Light directional = scene.lights()[0];
+  Light distant = directional;
+  distant.type = LightType::Distant;
+  distant.angle_deg = 10.0f;
+  const ParameterSettings common = {{"ambient_occlusion", false}, {"iso_value", 0.5}, {"shadows", std::string("soft")}};
+  testing::expect_knob_overrides_light(scene, "occlusion-map", common, "light_size_deg", distant, 10.0, directional,
+                                       3.0, 1.0);
 }
 
 // The map depends on the data only: iso-value and TF changes rebuild nothing;

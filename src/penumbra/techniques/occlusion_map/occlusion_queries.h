@@ -58,6 +58,7 @@ template <int K> struct OcclusionQueries {
   float ao_offset = 2.0f;  // sigmas of each level along the normal
   AoCombine ao_combine = AoCombine::Max;  // how the four levels' occlusion combine
   float default_spread = 0.0f;  // tan(angular radius) for lights without a size
+  float forced_spread = -1.0f;  // >= 0: the tan(angular radius) of every light (an explicit light_size_deg)
 
   // Share of a Gaussian region (centre c, standard deviation sigma) inside
   // the volume's box. Outside the box there is nothing, so the occlusion of a
@@ -119,6 +120,7 @@ template <int K> struct OcclusionQueries {
   // round: an anisotropic Gaussian light takes the radius of equal variance,
   // the root mean square of its two spreads.
   PENUMBRA_HD float light_spread(const Light& light, vec3 p) const {
+    if (forced_spread >= 0.0f) return forced_spread;
     switch (light.type) {
       case LightType::Distant: {
         const float x = glm::min(light.angle_deg, 89.0f), y = glm::min(light.spread_y_deg(), 89.0f);

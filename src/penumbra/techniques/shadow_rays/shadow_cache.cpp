@@ -4,7 +4,8 @@
 
 namespace penumbra {
 
-Volume build_shadow_cache(const RenderView& v, const Light& light, float density_scale, float resolution) {
+Volume build_shadow_cache(const RenderView& v, int light_index, float density_scale, int light_samples,
+                          float resolution) {
   const ivec3 dims = glm::max(ivec3(glm::ceil(vec3(v.volume.dims) * resolution)), ivec3(2));
   Volume cache(dims, VoxelType::Float32);
   const vec3 extent = v.box.extent();
@@ -19,7 +20,7 @@ Volume build_shadow_cache(const RenderView& v, const Light& light, float density
       const int z = int(row / dims.y);
       for (int x = 0; x < dims.x; ++x) {
         const vec3 p = cache_view.world_from_index(vec3(x, y, z));
-        texels[x + std::int64_t(dims.x) * row] = light_transmittance(v, p, light, density_scale, stats);
+        texels[x + std::int64_t(dims.x) * row] = light_transmittance(v, p, light_index, density_scale, light_samples, stats);
       }
     }
   });

@@ -15,6 +15,7 @@ class ShadowRays final : public Technique {
   void prepare(const Scene& scene, const ParameterValues& params) override {
     const bool shared_changed = resources_.update(scene, scene.material().shading == Shading::Phong);
     density_scale_ = float(params.number("shadow_density_scale"));
+    light_samples_ = params.integer("light_samples");
     use_cache_ = params.flag("shadow_cache");
     if (!use_cache_) {
       caches_.clear();
@@ -28,8 +29,9 @@ class ShadowRays final : public Technique {
     const RenderView view = resources_.shadow_view(scene);
     caches_.clear();
     cache_views_.clear();
-    for (const Light& light : scene.lights()) {
-      caches_.push_back(build_shadow_cache(view, light, density_scale_, float(params.number("cache_resolution"))));
+    for (int i = 0; i < view.light_count; ++i) {
+      caches_.push_back(
+          build_shadow_cache(view, i, density_scale_, light_samples_, float(params.number("cache_resolution"))));
     }
     for (const Volume& c : caches_) cache_views_.push_back(c.view());
     lights_version_ = v.lights;
@@ -43,7 +45,7 @@ class ShadowRays final : public Technique {
     view.structures = rebuilds_;  // the caches' version, for device mirrors
     const RenderView shadows = resources_.shadow_view(scene);
     const Shading shading = scene.material().shading;
-    const ShadowRayVisibility rays{&shadows, density_scale_};
+    const ShadowRayVisibility rays{&shadows, density_scale_, light_samples_};
     if (use_cache_) {
       render_lit(view, CachedShadowRayVisibility{rays, cache_views_.data()}, shading, image, stats);
     } else {
@@ -62,6 +64,7 @@ class ShadowRays final : public Technique {
  private:
   SceneResources resources_;
   float density_scale_ = 1.0f;
+  int light_samples_ = 1;
   bool use_cache_ = false;
   std::vector<Volume> caches_;
   std::vector<VolumeView> cache_views_;
@@ -80,6 +83,8 @@ TechniqueInfo shadow_rays_info() {
       ParameterTable{{
           ParameterSpec::real("shadow_density_scale", 1.0, 0.0, 100.0,
                               "multiplies sigma_t along shadow rays only (0 = unshadowed)"),
+          ParameterSpec::integer("light_samples", 1, 1, 1024,
+                                 "shadow rays per area light (stratified, seeded); 1 = one ray to its centre"),
           ParameterSpec::flag("shadow_cache", false,
                               "precompute transmittance per light on a grid instead of marching per sample"),
           ParameterSpec::real("cache_resolution", 0.5, 0.05, 2.0,
