@@ -42,7 +42,7 @@ Scene edge_scene(int image = 48) {
   return scene;
 }
 
-float luminance(const Image& im, int x, int y) {
+float pixel_luminance(const Image& im, int x, int y) {
   const vec4 c = im.at(x, y);
   return (c.x + c.y + c.z) / 3.0f;
 }
@@ -53,7 +53,7 @@ std::vector<float> floor_profile(const Image& im) {
   std::vector<float> row(std::size_t(im.width()), 0.0f);
   const int y0 = im.height() / 4, y1 = 3 * im.height() / 4;
   for (int x = 0; x < im.width(); ++x) {
-    for (int y = y0; y < y1; ++y) row[std::size_t(x)] += luminance(im, x, y) / float(y1 - y0);
+    for (int y = y0; y < y1; ++y) row[std::size_t(x)] += pixel_luminance(im, x, y) / float(y1 - y0);
   }
   return row;
 }
