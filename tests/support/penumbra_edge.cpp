@@ -108,4 +108,10 @@ Image expect_knob_overrides_light(const Scene& scene, const std::string& techniq
   return overridden;
 }
 
+Light as_distant(Light light, float angle_deg) {
+  light.type = LightType::Distant;
+  light.angle_deg = angle_deg;
+  return light;
+}
+
 }  // namespace penumbra::testing

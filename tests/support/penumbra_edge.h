@@ -32,6 +32,10 @@ float penumbra_width_10_90(const EdgeScene& edge, const Image& image, const Imag
 // divisor above, the same unshadowed lighting for every technique.
 Image unshadowed_floor(const EdgeScene& edge);
 
+// `light` as a distant light of the given angular radius (scene/light.h's
+// angle_deg), keeping its direction, colour and intensity.
+Light as_distant(Light light, float angle_deg);
+
 // A technique's softness knob (issue 18): unset (absent from `common`) it
 // follows the light `sized`, the same image as the knob set to `matching`;
 // set to `other` it overrides the light's size (the same image as the

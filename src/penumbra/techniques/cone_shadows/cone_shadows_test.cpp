@@ -113,9 +113,7 @@ TEST(ConeShadows, LightMovesRebuildOnlyTheCaches) {
 TEST(ConeShadows, ConeAngleFollowsTheLightUnlessSet) {
   Scene scene = spheres_over_floor(24);
   const Light directional = scene.lights()[0];
-  Light distant = directional;
-  distant.type = LightType::Distant;
-  distant.angle_deg = 12.0f;
+  const Light distant = testing::as_distant(directional, 12.0f);
   const Image overridden =
       testing::expect_knob_overrides_light(scene, "cone-shadows", {}, "cone_angle_deg", distant, 12.0, directional,
                                            5.0, 2.0);

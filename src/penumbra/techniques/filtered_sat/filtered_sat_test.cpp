@@ -40,6 +40,17 @@ Scene lit_spheres(vec3 direction = vec3(0.4f, 0.6f, -1.0f)) {
   return scene;
 }
 
+// lit_spheres with a second light, a point light at the upper left.
+Scene lit_spheres_and_a_point_light() {
+  Scene scene = lit_spheres();
+  Light point;
+  point.type = LightType::Point;
+  point.position = vec3(-30.0f, -40.0f, 45.0f);
+  point.intensity = 4500.0f;
+  scene.set_lights({scene.lights()[0], point});
+  return scene;
+}
+
 // As the patch shrinks to a voxel, the mean optical depth over it becomes the
 // optical depth of the one shadow ray: the image error against shadow-rays
 // falls monotonically and ends at the tables' discretisation (cells of half
@@ -192,12 +203,7 @@ TEST(FilteredSat, FilterChangesNeverRebuildTheTables) {
 // rebuilds both lights' tables and caches.
 TEST(FilteredSat, OnlyWhatATableDependsOnRebuildsIt) {
   for (const std::string technique : {"filtered-sat", "cone-shadows", "sat-ao"}) {
-    Scene scene = lit_spheres();
-    Light point;
-    point.type = LightType::Point;
-    point.position = vec3(-30.0f, -40.0f, 45.0f);
-    point.intensity = 4500.0f;
-    scene.set_lights({scene.lights()[0], point});
+    Scene scene = lit_spheres_and_a_point_light();
     scene.set_shadow_transfer_function(scene.transfer_function());
     const TechniqueInfo& info = find_technique(technique);
     const ParameterValues params(info.parameters);
@@ -244,12 +250,7 @@ TEST(FilteredSat, OnlyWhatATableDependsOnRebuildsIt) {
 // (and only its cache), a colour change rebuilds nothing; a floor or a
 // tolerance below 1 brings the tables back.
 TEST(FilteredSat, TablesAreReleasedOnceTheCachesAreFilled) {
-  Scene scene = lit_spheres();
-  Light point;
-  point.type = LightType::Point;
-  point.position = vec3(-30.0f, -40.0f, 45.0f);
-  point.intensity = 4500.0f;
-  scene.set_lights({scene.lights()[0], point});
+  Scene scene = lit_spheres_and_a_point_light();
   const TechniqueInfo& info = find_technique("filtered-sat");
   ParameterValues released(info.parameters);
   released.set("cache_tolerance", 1.0);

@@ -380,9 +380,7 @@ TEST(OcclusionMapRender, SoftShadowsApproachHardShadowsAsTheLightShrinks) {
 TEST(OcclusionMapRender, LightSizeFollowsTheLightUnlessSet) {
   Scene scene = lit_balls(32);
   const Light directional = scene.lights()[0];
-  Light distant = directional;
-  distant.type = LightType::Distant;
-  distant.angle_deg = 10.0f;
+  const Light distant = testing::as_distant(directional, 10.0f);
   const ParameterSettings common = {{"ambient_occlusion", false}, {"iso_value", 0.5}, {"shadows", std::string("soft")}};
   testing::expect_knob_overrides_light(scene, "occlusion-map", common, "light_size_deg", distant, 10.0, directional,
                                        3.0, 1.0);
