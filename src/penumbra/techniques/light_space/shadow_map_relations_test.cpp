@@ -23,7 +23,7 @@ using testing::procedural_scene;
 
 // Renders with 256^2 maps (unless `params` says otherwise), which resolve
 // these 32^3 volumes finely (a texel is about 0.2 voxel) and keep tests fast.
-Image render_with(const Scene& scene, const std::string& technique, ParameterSettings params = {}) {
+Image render_small_maps(const Scene& scene, const std::string& technique, ParameterSettings params = {}) {
   if (find_technique(technique).parameters.find("resolution")) params.emplace("resolution", 256.0);
   return testing::render_with(scene, technique, params);
 }
@@ -89,10 +89,10 @@ double fraction_differing(const Image& a, const Image& b, float threshold) {
 TEST(ShadowMapRelations, AllAgreeWithShadowRaysOnAnOpaqueOccluder) {
   for (const Light& light : {slanted_directional(), point_light()}) {
     const Scene scene = floor_scene("edge", testing::step_tf(0.5f, vec3(0.0f), 1.0f), light);
-    const Image reference = render_with(scene, "shadow-rays");
+    const Image reference = render_small_maps(scene, "shadow-rays");
     for (const char* name : kShadowMaps) {
       SCOPED_TRACE(std::string(name) + (light.type == LightType::Point ? " point" : " directional"));
-      const Image image = render_with(scene, name);
+      const Image image = render_small_maps(scene, name);
       std::printf("[shadow maps] opaque edge, %s, %s light: %.4f of pixels differ, mean error %.5f\n", name,
                   light.type == LightType::Point ? "point" : "directional", fraction_differing(image, reference, 0.05f),
                   mean_absolute_error(image, reference));
@@ -106,10 +106,10 @@ TEST(ShadowMapRelations, AllAgreeWithShadowRaysOnAnOpaqueOccluder) {
 // same in every channel), and its shadow is partial.
 TEST(ShadowMapRelations, GreyOccluderGivesGreyShadows) {
   const Scene scene = floor_scene("spheres", testing::step_tf(0.3f, vec3(0.25f), 0.3f), slanted_directional());
-  const Image unshadowed = render_with(scene, "shadow-rays", {{"shadow_density_scale", 0.0}});
+  const Image unshadowed = render_small_maps(scene, "shadow-rays", {{"shadow_density_scale", 0.0}});
   for (const char* name : kShadowMaps) {
     SCOPED_TRACE(name);
-    const Image image = render_with(scene, name);
+    const Image image = render_small_maps(scene, name);
     for (const vec4& p : image.pixels()) {
       ASSERT_NEAR(p.r, p.g, 1e-5f);
       ASSERT_NEAR(p.g, p.b, 1e-5f);
@@ -140,7 +140,7 @@ TEST(ShadowMapRelations, RedTranslucentShellTintsTheFloorShadow) {
   tf.set_range(vec2(0.0f, 1.0f));
   const Light light = slanted_directional();
   const Scene scene = floor_scene("shell", tf, light);
-  const Image reference = render_with(scene, "shadow-rays");
+  const Image reference = render_small_maps(scene, "shadow-rays");
   const float lit = std::abs(light.direction.z);  // cos of the floor's incidence angle
   const CameraView view = scene.camera().view();
   const Box3 box = scene.volume().world_box();
@@ -161,13 +161,13 @@ TEST(ShadowMapRelations, RedTranslucentShellTintsTheFloorShadow) {
   };
   vec3 deep_chromatic(0.0f);
   for (const char* name : {"deep-shadow-map", "cssm"}) {
-    const vec3 paper = mean_rgb(render_with(scene, name, {{"color_model", std::string("paper")}}));
+    const vec3 paper = mean_rgb(render_small_maps(scene, name, {{"color_model", std::string("paper")}}));
     std::printf("[shadow maps] red shell, %s, paper colours: shadow rgb %.3f %.3f %.3f (unshadowed %.3f) over %zu "
                 "pixels\n",
                 name, paper.r, paper.g, paper.b, lit, shell_shadow.size());
     EXPECT_GT(paper.r, 2.0f * paper.g) << name;
     EXPECT_GT(paper.r, 0.8f * lit) << name << ": red passes the red shell";
-    const Image chromatic = render_with(scene, name);
+    const Image chromatic = render_small_maps(scene, name);
     const vec3 c = mean_rgb(chromatic);
     std::printf("[shadow maps] red shell, %s, chromatic: shadow rgb %.3f %.3f %.3f\n", name, c.r, c.g, c.b);
     EXPECT_GT(c.r, 1.4f * c.g) << name;
@@ -187,10 +187,10 @@ TEST(ShadowMapRelations, RedTranslucentShellTintsTheFloorShadow) {
     } else {
       EXPECT_LT(max_component(glm::abs(c - deep_chromatic)), 0.03f) << "the CSSM estimates what the deep map holds";
     }
-    const vec3 grey = mean_rgb(render_with(scene, name, {{"colored", false}}));
+    const vec3 grey = mean_rgb(render_small_maps(scene, name, {{"colored", false}}));
     EXPECT_NEAR(grey.r, grey.g, 1e-5f) << name;
   }
-  const vec3 plain = mean_rgb(render_with(scene, "shadow-map"));
+  const vec3 plain = mean_rgb(render_small_maps(scene, "shadow-map"));
   EXPECT_NEAR(plain.r, plain.g, 1e-5f);
 }
 
@@ -241,14 +241,14 @@ TEST(ShadowMapRelations, HeadCtFloorShadowDarkensAsUnderShadowRays) {
     }
   }
   ASSERT_GT(floor_pixels.size(), 200u);
-  const double unshadowed = mean_luminance(render_with(scene, "shadow-rays", {{"shadow_density_scale", 0.0}}),
+  const double unshadowed = mean_luminance(render_small_maps(scene, "shadow-rays", {{"shadow_density_scale", 0.0}}),
                                            floor_pixels);
-  const double reference = unshadowed - mean_luminance(render_with(scene, "shadow-rays"), floor_pixels);
+  const double reference = unshadowed - mean_luminance(render_small_maps(scene, "shadow-rays"), floor_pixels);
   ASSERT_GT(reference, 0.02) << "the skull should shadow the floor";
   for (const char* name : {"deep-shadow-map", "cssm"}) {
-    const double darkening = unshadowed - mean_luminance(render_with(scene, name), floor_pixels);
+    const double darkening = unshadowed - mean_luminance(render_small_maps(scene, name), floor_pixels);
     const double paper =
-        unshadowed - mean_luminance(render_with(scene, name, {{"color_model", std::string("paper")}}), floor_pixels);
+        unshadowed - mean_luminance(render_small_maps(scene, name, {{"color_model", std::string("paper")}}), floor_pixels);
     std::printf("[shadow maps] head CT floor, %s: darkening %.4f (chromatic), %.4f (paper) vs shadow-rays %.4f: "
                 "%.3f, %.3f of it\n",
                 name, darkening, paper, reference, darkening / reference, paper / reference);
@@ -294,13 +294,13 @@ TEST(ShadowMapRelations, CssmDoesNotLeakOnAGrazingCutFace) {
   const Scene scene = grazing_face_scene();
   std::vector<int> all(48 * 48);
   for (int i = 0; i < 48 * 48; ++i) all[i] = i;
-  const Image reference_image = render_with(scene, "shadow-rays");
+  const Image reference_image = render_small_maps(scene, "shadow-rays");
   testing::save_test_image(reference_image, "grazing-shadow-rays.png");
   const double reference = mean_luminance(reference_image, all);
-  const Image fixed_image = render_with(scene, "cssm");
+  const Image fixed_image = render_small_maps(scene, "cssm");
   testing::save_test_image(fixed_image, "grazing-cssm.png");
   const double fixed = mean_luminance(fixed_image, all) / reference;
-  const double paper = mean_luminance(render_with(scene, "cssm", {{"filter", std::string("paper")}}), all) / reference;
+  const double paper = mean_luminance(render_small_maps(scene, "cssm", {{"filter", std::string("paper")}}), all) / reference;
   std::printf("[shadow maps] grazing cut face: shadow-rays %.4f; cssm %.3fx of it (paper filter %.3fx)\n", reference,
               fixed, paper);
   EXPECT_NEAR(fixed, 1.0, 0.15);
@@ -318,17 +318,17 @@ TEST(ShadowMapRelations, SlopeScaledBiasRemovesAcneOnAGrazingCutFace) {
   const Scene scene = grazing_face_scene();
   std::vector<int> all(48 * 48);
   for (int i = 0; i < 48 * 48; ++i) all[i] = i;
-  const double reference = mean_luminance(render_with(scene, "shadow-rays"), all);
+  const double reference = mean_luminance(render_small_maps(scene, "shadow-rays"), all);
   const std::pair<const char*, ParameterSettings> cases[] = {
       {"deep-shadow-map", {{"nodes", 16.0}, {"tolerance", 0.002}}}, {"shadow-map", {}}};
   for (const auto& [name, params] : cases) {
     ParameterSettings without = params;
     without["slope_bias"] = 0.0;
-    const Image fixed_image = render_with(scene, name, params);
+    const Image fixed_image = render_small_maps(scene, name, params);
     testing::save_test_image(fixed_image, std::string("grazing-") + name + ".png");
-    testing::save_test_image(render_with(scene, name, without), std::string("grazing-") + name + "-no-slope-bias.png");
+    testing::save_test_image(render_small_maps(scene, name, without), std::string("grazing-") + name + "-no-slope-bias.png");
     const double fixed = luminance_variation(fixed_image);
-    const double old = luminance_variation(render_with(scene, name, without));
+    const double old = luminance_variation(render_small_maps(scene, name, without));
     const double mean = mean_luminance(fixed_image, all) / reference;
     std::printf("[shadow maps] grazing cut face, %s: luminance variation %.4f (%.4f without slope bias); mean %.3fx "
                 "shadow-rays'\n",
@@ -348,11 +348,11 @@ TEST(ShadowMapRelations, SlopeScaledBiasRemovesAcneOnAGrazingCutFace) {
 // the band kept its width: the offsets grew with the map.
 TEST(ShadowMapRelations, CssmImprovesWithResolution) {
   const Scene scene = floor_scene("edge", testing::step_tf(0.5f, vec3(0.0f), 1.0f), slanted_directional());
-  const Image reference = render_with(scene, "shadow-rays");
+  const Image reference = render_small_maps(scene, "shadow-rays");
   double previous = kInfinity;
   for (double resolution : {256.0, 1024.0}) {
     const double band = fraction_differing(
-        render_with(scene, "cssm", {{"resolution", resolution}, {"filter", std::string("paper")}, {"offset_scale", 4.0}}),
+        render_small_maps(scene, "cssm", {{"resolution", resolution}, {"filter", std::string("paper")}, {"offset_scale", 4.0}}),
         reference, 0.05f);
     std::printf("[shadow maps] cssm edge at %.0f^2, offsets x4: %.4f of pixels off shadow-rays\n", resolution, band);
     EXPECT_LT(band, 0.5 * previous) << resolution;
@@ -365,9 +365,9 @@ TEST(ShadowMapRelations, CssmImprovesWithResolution) {
 TEST(ShadowMapRelations, SeparateShadowTransferFunctionDrivesTheMaps) {
   Scene scene = floor_scene("spheres", testing::step_tf(0.3f, vec3(0.8f, 0.5f, 0.3f), 0.3f), point_light());
   scene.set_shadow_transfer_function(testing::step_tf(0.0f, vec3(1.0f), 0.0f));
-  const Image unshadowed = render_with(scene, "shadow-rays", {{"shadow_density_scale", 0.0}});
+  const Image unshadowed = render_small_maps(scene, "shadow-rays", {{"shadow_density_scale", 0.0}});
   for (const char* name : kShadowMaps) {
-    EXPECT_LT(max_abs_error(render_with(scene, name), unshadowed), 1e-6) << name;
+    EXPECT_LT(max_abs_error(render_small_maps(scene, name), unshadowed), 1e-6) << name;
   }
 }
 
@@ -383,9 +383,9 @@ TEST(ShadowMapRelations, EveryLightHasItsOwnMap) {
   only_a.set_lights({a});
   only_b.set_lights({b});
   for (const char* name : kShadowMaps) {
-    const Image sum_ab = render_with(both, name);
-    const Image image_a = render_with(only_a, name);
-    const Image image_b = render_with(only_b, name);
+    const Image sum_ab = render_small_maps(both, name);
+    const Image image_a = render_small_maps(only_a, name);
+    const Image image_b = render_small_maps(only_b, name);
     Image sum = image_a;
     for (std::size_t i = 0; i < sum.pixel_count(); ++i) sum.data()[i] += image_b.data()[i];
     std::printf("[shadow maps] two lights, %s: rmse to the sum of single-light images %.3g\n", name, rmse(sum_ab, sum));
@@ -403,8 +403,8 @@ TEST(ShadowMapRelations, PointLightInsideTheVolumeUsesACubeMap) {
   light.position = vec3(0.0f, -4.0f, 2.0f);
   light.intensity = 150.0f;
   scene.set_lights({light});
-  const Image reference = render_with(scene, "shadow-rays");
-  const Image deep = render_with(scene, "deep-shadow-map",
+  const Image reference = render_small_maps(scene, "shadow-rays");
+  const Image deep = render_small_maps(scene, "deep-shadow-map",
                                  {{"nodes", 16.0}, {"tolerance", 0.002}, {"colored", false}, {"filter", "bilinear"}});
   std::printf("[shadow maps] cube map, grey deep shadow map vs shadow-rays: rmse %.4g\n", rmse(deep, reference));
   EXPECT_LT(rmse(deep, reference), 0.01);
