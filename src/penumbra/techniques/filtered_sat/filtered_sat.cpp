@@ -1,5 +1,6 @@
 #include "penumbra/techniques/filtered_sat/filtered_sat.h"
 
+#include "penumbra/base/error.h"
 #include "penumbra/render/render_lit.h"
 #include "penumbra/render/scene_resources.h"
 #include "penumbra/techniques/filtered_sat/filtered_visibility.h"
@@ -12,7 +13,13 @@
 namespace penumbra {
 namespace {
 
-FilterKernel kernel_named(const std::string& name) {
+// The filter width of lights without a size, and of every light with
+// filter_voxels unset before issue 18.
+constexpr double kDefaultFilterVoxels = 5.0;
+constexpr double kMinFilterVoxels = 0.25, kMaxFilterVoxels = 256.0;  // filter_voxels' range
+
+FilterKernel kernel_named(const std::string& name, bool gaussian_light) {
+  if (name == "auto") return gaussian_light ? FilterKernel::Gaussian : FilterKernel::Box;
   return name == "gaussian" ? FilterKernel::Gaussian : FilterKernel::Box;
 }
 
@@ -21,9 +28,8 @@ class FilteredSat final : public Technique {
   void prepare(const Scene& scene, const ParameterValues& params) override {
     resources_.update(scene);
     const float voxel = scene.volume().view().min_spacing();
-    filter_ = make_shadow_filter(kernel_named(params.choice("kernel")), float(params.number("filter_voxels")) * voxel,
-                                 float(params.number("shadow_density_scale")),
-                                 float(params.number("patch_offset")));
+    const std::vector<vec2> previous_shapes = std::move(light_shapes_);
+    derive_filters(scene, params, voxel);
     // The tables depend on the extinction (data, shadow TF, clip planes), the
     // resolution and each light's direction or position; a light's colour
     // or intensity, a floor plane or a render-only TF edit change none.
@@ -62,13 +68,18 @@ class FilteredSat final : public Technique {
     ParameterValues cache_params = params;
     cache_params.set("sat_resolution", params.table().at("sat_resolution").default_value);
     cache_params.set("cache_tolerance", params.table().at("cache_tolerance").default_value);  // read-time only
-    auto stale = [&](std::size_t i) { return i >= previous.size() || !(previous[i] == placements_[i]); };
+    // A light whose size changed has a new filter (when derived): its cache
+    // is rebuilt, its table is not.
+    auto stale = [&](std::size_t i) {
+      return i >= previous.size() || !(previous[i] == placements_[i]) || i >= previous_shapes.size() ||
+             previous_shapes[i] != light_shapes_[i];
+    };
     rebuilds_ += std::uint64_t(caches_.update(
         placements_.size(), scene.volume().world_box(),
         visibility_cache_dims(scene.volume().dims(), float(params.number("cache_resolution"))), cache_params,
         [&](std::size_t light) { return placements_[light].kind != LightTableKind::None; }, stale,
         [&](std::size_t light, vec3 p) {
-          return FilteredVisibility{tables_.lookups().data(), filter_}.transmittance(int(light), p);
+          return visibility().transmittance(int(light), p);
         },
         [&](std::size_t light) {
           // Without kept tables: build (or keep, for a light sharing the
@@ -83,7 +94,7 @@ class FilteredSat final : public Technique {
     RenderView view = resources_.view(scene);
     view.structures = rebuilds_;  // the tables' and caches' version, for device mirrors
     const Shading shading = scene.material().shading;
-    const FilteredVisibility direct{tables_.lookups().data(), filter_};
+    const FilteredVisibility direct = visibility();
     if (caches_.built()) {
       // Without the tables every lookup reads the cache (clamped to its box).
       constexpr float kFar = std::numeric_limits<float>::max();
@@ -101,8 +112,46 @@ class FilteredSat final : public Technique {
   std::uint64_t rebuilds() const override { return rebuilds_; }
 
  private:
+  // The filters (filtered_sat.h, "The filter from the light's size"): with
+  // filter_voxels unset each of the first FilteredVisibility::kLightFilters
+  // lights gets the filter of its size (kDefaultFilterVoxels without one),
+  // the others that default; set, every light gets it. light_shapes_ keeps
+  // per light (width, gaussian) for the caches' staleness.
+  void derive_filters(const Scene& scene, const ParameterValues& params, float voxel) {
+    const double knob = params.number("filter_voxels");
+    if (knob >= 0.0 && knob < kMinFilterVoxels) {
+      throw InvalidArgument("filter_voxels", "must be at least 0.25 voxels, or negative for the light's size; got " +
+                                                 std::to_string(knob));
+    }
+    const std::string kernel = params.choice("kernel");
+    const float scale = float(params.number("shadow_density_scale"));
+    const float offset = float(params.number("patch_offset"));
+    auto make = [&](float width, bool gaussian_light) {
+      return make_shadow_filter(kernel_named(kernel, gaussian_light), width, scale, offset);
+    };
+    const float fallback = float(knob < 0.0 ? kDefaultFilterVoxels : knob) * voxel;
+    shared_filter_ = make(fallback, false);
+    filters_.clear();
+    light_shapes_.clear();
+    const Box3 box = scene.volume().world_box();
+    for (const Light& light : scene.lights()) {
+      LightFilterShape shape;
+      if (knob < 0.0) shape = filter_from_light(light, box);
+      const float width = shape.width > 0.0f
+                              ? glm::clamp(shape.width, float(kMinFilterVoxels) * voxel, float(kMaxFilterVoxels) * voxel)
+                              : fallback;
+      light_shapes_.push_back(vec2(width, shape.gaussian ? 1.0f : 0.0f));
+      if (filters_.size() < std::size_t(FilteredVisibility::kLightFilters)) filters_.push_back(make(width, shape.gaussian));
+    }
+  }
+  FilteredVisibility visibility() const {
+    return FilteredVisibility::with(tables_.lookups().data(), filters_, shared_filter_);
+  }
+
   SceneResources resources_;
-  ShadowFilter filter_;
+  std::vector<ShadowFilter> filters_;  // per light, the first kLightFilters
+  ShadowFilter shared_filter_;         // the lights beyond them
+  std::vector<vec2> light_shapes_;     // per light: filter width (world) and gaussian (1) or box (0)
   LightTables tables_;
   bool built_ = false;        // the last prepare finished
   bool tables_kept_ = false;  // tables_ holds every light's table (else none)
@@ -121,10 +170,12 @@ TechniqueInfo filtered_sat_info() {
       "filtered-sat",
       "low-pass filtered soft shadows from light-aligned summed-area tables (Ament et al. 2014)",
       ParameterTable{{
-          ParameterSpec::real("filter_voxels", 5.0, 0.25, 256.0,
-                              "shadow filter width in voxels (softness; the cost does not depend on it)"),
-          ParameterSpec::choice("kernel", "box", {"box", "gaussian"},
-                                "box (constant time) or gaussian (8x8 sub-cuboids, same variance as the box)"),
+          ParameterSpec::real("filter_voxels", -1.0, -1.0, kMaxFilterVoxels,
+                              "shadow filter width in voxels (softness; the cost does not depend on it; < 0 = "
+                              "from each light's size, 5 for directional and point lights)"),
+          ParameterSpec::choice("kernel", "auto", {"auto", "box", "gaussian"},
+                                "box (constant time) or gaussian (8x8 sub-cuboids, same variance as the box); "
+                                "auto = gaussian for a gaussian distant light's derived filter, box otherwise"),
           ParameterSpec::real("patch_offset", 0.0, 0.0, 4.0,
                               "start the filtered volume this many filter half-widths toward the light "
                               "(0 = at the sample, the paper; > 0 lessens lit surfaces' self-shadowing)"),

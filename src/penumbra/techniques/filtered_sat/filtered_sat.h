@@ -11,10 +11,43 @@
 //     outside the volume
 //   box filter in constant time, Gaussian from sub-cuboids (4.3)
 //
+// The filter from the light's size (filter_voxels unset, < 0, the default;
+// issue 18). The paper's filter has one width for the whole volume, while a
+// light of angular radius theta softens a shadow cast from distance s by a
+// disk of radius s tan(theta), different for every occluder-receiver pair.
+// So the width is the light's at one representative occluder distance D:
+//   D = a third of the volume box's chord through its centre toward the
+//       light: the mean distance between two points spread uniformly along
+//       that chord, i.e. between a receiver and an occluder on one light ray
+//       through the volume (shadow_filter.h)
+//   distant, uniform   the disk of radius R = D tan(theta) (theta =
+//                      angle_deg, the cone's half-angle), as the box of the
+//                      same per-axis variance (R^2 / 4 = w^2 / 12): w = sqrt(3) R
+//   distant, gaussian  per-axis spread D tan(sigma) (the RMS of angle_deg and
+//                      angle_y_deg for an anisotropic light, which a square
+//                      patch cannot follow): w = sqrt(12) D tan(sigma), with
+//                      the Gaussian kernel (kernel = auto)
+//   sphere, disk       radius r at distance L from the box centre, occluders
+//                      at D' = min(D, L / 2): by similar triangles the disk of
+//                      radius R = r D' / (L - D') (a disk as if seen face
+//                      on), w = sqrt(3) R
+//   directional, point 5 voxels (the former default)
+// Widths are clamped to filter_voxels' range. The first 8 lights get their
+// own filters, further ones 5 voxels; an explicit filter_voxels applies to
+// every light (with the box kernel under kernel = auto). Consequences of the
+// constant width, measured in filtered_sat_light_test.cpp: a shadow's
+// softness does not grow with the distance to its occluder, so it is the
+// light's only at distance D (sharper below, softer above); and the paper's
+// model takes exp of the filtered optical depth, so under an optically thick
+// edge the 10-90 % penumbra is ln(9) / tau of the filter width (tau the
+// occluder's optical depth), narrower than the light's.
+//
 // Parameters
 //   filter_voxels         patch width in voxels of the smallest spacing (the
-//                         Gaussian gets the same variance as this box)
-//   kernel                box | gaussian
+//                         Gaussian gets the same variance as this box);
+//                         < 0: from each light's size (above)
+//   kernel                auto (box; gaussian for a derived gaussian light's
+//                         filter) | box | gaussian
 //   patch_offset          start the filtered volume this many filter
 //                         half-widths toward the light (0: the paper's cuboid
 //                         from the sample; more leaves out the material of
@@ -34,7 +67,8 @@
 //            position (never for a colour, an intensity, a floor plane or a
 //            render-only TF edit); then, with the cache, one transmittance
 //            grid per light, rebuilt when its table is, or when the filter,
-//            kernel, offset, density scale or cache resolution change.
+//            kernel, offset, density scale or cache resolution change (a
+//            light's size changes only its own derived filter and cache).
 //            Tables are float residuals against double block corners
 //            (summed_area_table.h). When the render reads no table (the
 //            cache on, cache_tolerance 1, no floor plane), each light's

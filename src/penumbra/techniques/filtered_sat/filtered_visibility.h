@@ -13,18 +13,37 @@
 namespace penumbra {
 
 struct FilteredVisibility {
+  // Lights 0 .. kLightFilters - 1 have a filter each (from their sizes,
+  // filtered_sat.h); the others share filters[kLightFilters].
+  static constexpr int kLightFilters = 8;
   const LightTableLookup* lights = nullptr;
-  ShadowFilter filter;
+  ShadowFilter filters[kLightFilters + 1];
+
+  // `per_light[i]` for light i, `shared` for the lights beyond them.
+  static FilteredVisibility with(const LightTableLookup* lights, const std::vector<ShadowFilter>& per_light,
+                                 const ShadowFilter& shared) {
+    FilteredVisibility v;
+    v.lights = lights;
+    for (int i = 0; i < kLightFilters; ++i) v.filters[i] = std::size_t(i) < per_light.size() ? per_light[i] : shared;
+    v.filters[kLightFilters] = shared;
+    return v;
+  }
 
   // The device copy (backends/device.h): each light's table mirrored.
   template <class Mirror> FilteredVisibility on_device(Mirror& m) const {
     std::vector<LightTableLookup> copy(lights, lights + m.light_count());
     for (LightTableLookup& light : copy) light.table = light.table.on_device(m);
-    return FilteredVisibility{m.frame(copy, "the light tables"), filter};
+    FilteredVisibility v = *this;
+    v.lights = m.frame(copy, "the light tables");
+    return v;
   }
 
+  PENUMBRA_HD const ShadowFilter& filter(int light) const {
+    return filters[light < kLightFilters ? light : kLightFilters];
+  }
   PENUMBRA_HD float transmittance(int light, vec3 p) const {
-    return exp_nonpositive(-filter.density_scale * filtered_optical_depth(lights[light], filter, p));
+    const ShadowFilter& f = filter(light);
+    return exp_nonpositive(-f.density_scale * filtered_optical_depth(lights[light], f, p));
   }
   PENUMBRA_HD vec3 operator()(int light, vec3 p, const LightSample&) const { return vec3(transmittance(light, p)); }
 };

@@ -12,6 +12,8 @@
 // second-moment sense and agree at low frequencies (1 - (2 pi f sigma)^2 / 2
 // + ...).
 #include "penumbra/base/math.h"
+#include "penumbra/base/ray.h"
+#include "penumbra/scene/light.h"
 
 namespace penumbra {
 
@@ -36,5 +38,20 @@ struct ShadowFilter {
 // `offset`: in units of the filter's half-width (the box's half-width, or
 // for the Gaussian that of its box of equal variance).
 ShadowFilter make_shadow_filter(FilterKernel kernel, float width, float density_scale, float offset = 0.0f);
+
+// The filter that stands for a light's size (filtered_sat.h, "The filter
+// from the light's size"): its box width in world units (0 for a light
+// without a size: directional, point, zero angle or radius, environment) and
+// whether its profile is Gaussian. `box` is the volume's world box.
+struct LightFilterShape {
+  float width = 0.0f;
+  bool gaussian = false;
+};
+LightFilterShape filter_from_light(const Light& light, const Box3& box);
+
+// The representative occluder distance for a light seen from the centre of
+// `box` in direction `toward_light` (unit): a third of the box's chord
+// through its centre along that direction.
+float representative_occluder_distance(const Box3& box, vec3 toward_light);
 
 }  // namespace penumbra
