@@ -11,5 +11,6 @@ void add_techniques_command(CLI::App& app);
 void add_bench_command(CLI::App& app);
 void add_compare_command(CLI::App& app);
 void add_serve_command(CLI::App& app);
+void add_plot_command(CLI::App& app);
 
 }  // namespace penumbra::cli

@@ -36,6 +36,7 @@ int main(int argc, char** argv) {
   penumbra::cli::add_bench_command(app);
   penumbra::cli::add_compare_command(app);
   penumbra::cli::add_serve_command(app);
+  penumbra::cli::add_plot_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

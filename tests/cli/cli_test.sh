@@ -72,6 +72,17 @@ slabs=$(sed -n 's/.*"passes_per_frame": \([0-9]*\).*/\1/p' <<<"$out")
 [ -n "$slabs" ] && [ "$slabs" -gt 10 ] && [ "$slabs" -lt 200 ] || fail "convolution bench reports $slabs slabs: $out"
 expect 2 "teapot" -- "$bin" bench "$src/scenes/spheres.json" --technique teapot --frames 1
 
+# plot: a PNG from a series,x,y table; a malformed table names the file and line.
+printf 'series,x,y\n# light size\nshadow-rays,0,0.2\nshadow-rays,8,0.9\nfiltered-sat,0,1.5\nfiltered-sat,8,2.5\n' > "$work/plot.csv"
+expect 0 "" -- "$bin" plot "$work/plot.csv" -o "$work/plot.png" --title "error" --x-label "deg" --y-label "dE"
+head -c 8 "$work/plot.png" | od -An -c | grep -q "P   N   G" || fail "plot.png is not a PNG"
+printf 'series,x,y\nshadow-rays,0,zero\n' > "$work/bad.csv"
+expect 2 "bad.csv: line 2: column y" -- "$bin" plot "$work/bad.csv" -o "$work/bad.png"
+printf 'name,value\n' > "$work/header.csv"
+expect 2 "header.csv" -- "$bin" plot "$work/header.csv" -o "$work/bad.png"
+expect 2 "missing.csv" -- "$bin" plot "$work/missing.csv" -o "$work/bad.png"
+expect 2 "--size" -- "$bin" plot "$work/plot.csv" -o "$work/bad.png" --size 0x0
+
 if [ "$failures" -gt 0 ]; then
   echo "$failures CLI check(s) failed"
   exit 1
