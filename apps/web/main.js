@@ -22,8 +22,9 @@ const state = {
 
 // Read by the end-to-end test (tests/web): frames drawn, and whether the
 // viewer has settled (no frame in flight or scheduled).
+// spp / converged: the path-traced estimate last shown (0 for other techniques).
 const status = {
-  frames: 0, fullFrames: 0, errors: 0,
+  frames: 0, fullFrames: 0, errors: 0, spp: 0, converged: false,
   idle: () => scheduler.idle() && !busy,
   scene: () => state.scene,
 };
@@ -75,9 +76,17 @@ async function renderFrame(kind) {
   status.frames++;
   if (!preview) status.fullFrames++;
   const total = performance.now() - started;
+  status.spp = frame.spp;
+  status.converged = frame.converged;
+  const spp = frame.spp > 0 ? ` · ${frame.spp} spp${frame.converged ? ' (done)' : ''}` : '';
   $('frame-time').textContent =
-    `${preview ? 'preview' : 'full'} ${width}² · ${frame.technique} · prepare ${frame.prepareMs.toFixed(1)} ms · ` +
+    `${preview ? 'preview' : 'full'} ${width}² · ${frame.technique}${spp} · prepare ${frame.prepareMs.toFixed(1)} ms · ` +
     `render ${frame.renderMs.toFixed(1)} ms · encode ${frame.encodeMs.toFixed(1)} ms · round trip ${total.toFixed(0)} ms`;
+  $('spp').textContent = frame.spp > 0 ? `${frame.spp} spp${frame.converged ? ' ✓' : ''}` : '';
+  // A progressive estimate (pathtrace) keeps growing while nothing changes:
+  // ask for the next frame until the server says it has converged (every
+  // pixel met target_error, or max_total_spp).
+  if (!preview && frame.spp > 0 && !frame.converged) scheduler.refine();
   if (!preview && state.histogramStale) {
     state.histogramStale = false;
     const info = await withBusy(() => api.volumeInfo(state.session));

@@ -1,7 +1,8 @@
 // End-to-end test of the web viewer: `penumbra serve` on a free port, the
 // viewer in headless Chromium, and the interactions of the issue: the engine
 // CT is shown, the technique is switched (its controls come from the
-// parameter table), a light is dragged on its gizmo and a TF point is moved.
+// parameter table), a light is dragged on its gizmo and a TF point is moved,
+// a light's size is set, and pathtrace converges progressively.
 // After each, the canvas must have changed, and no console error may occur.
 // A screenshot goes to OUTPUT_DIR/viewer.png.
 // Usage: node e2e.mjs PENUMBRA_BINARY DATA_DIR OUTPUT_DIR (see run_e2e.sh)
@@ -181,6 +182,37 @@ async function run() {
     await settled(page, 'orbit');
     after = await canvasPixels(page);
     check(difference(before, after) > 0.5, `orbiting changed the canvas (by ${difference(before, after).toFixed(2)})`);
+
+    // 6. The first light's size: 15 degrees makes the directional light a
+    // distant one, and cone-shadows (whose cone follows the light, 5 degrees
+    // for a directional one) changes.
+    await page.selectOption('#technique-select', 'cone-shadows');
+    await settled(page, 'technique cone-shadows');
+    before = await canvasPixels(page);
+    await page.locator('.light-size-value').first().fill('15');
+    await page.locator('.light-size-value').first().dispatchEvent('change');
+    await settled(page, 'light size 15 degrees');
+    after = await canvasPixels(page);
+    const sized = await page.evaluate(() => window.penumbraViewer.scene().lights[0]);
+    check(sized.type === 'distant' && sized.angle_deg === 15, `the light is distant with angle_deg 15 (${JSON.stringify(sized)})`);
+    check(difference(before, after) > 0.5, `the light's size changed the canvas (by ${difference(before, after).toFixed(2)})`);
+
+    // 7. pathtrace, progressive: a scene loaded with 1 path per pixel a frame
+    // and at most 3; the viewer asks for frames until the server says done.
+    const traced = await page.evaluate(() => {
+      const scene = JSON.parse(JSON.stringify(window.penumbraViewer.scene()));
+      scene.render.technique = 'pathtrace';
+      scene.render.params = { spp: 1, min_spp: 2, max_total_spp: 3 };
+      return JSON.stringify(scene);
+    });
+    const framesBefore = await page.evaluate(() => window.penumbraViewer.fullFrames);
+    await page.setInputFiles('#load-scene', { name: 'scene.json', mimeType: 'application/json', buffer: Buffer.from(traced) });
+    await settled(page, 'pathtrace converged');
+    const progress = await page.evaluate(() => ({ spp: window.penumbraViewer.spp, converged: window.penumbraViewer.converged,
+                                                  frames: window.penumbraViewer.fullFrames }));
+    check(progress.spp === 3 && progress.converged, `pathtrace reached 3 spp and stopped (${JSON.stringify(progress)})`);
+    check(progress.frames - framesBefore === 3, `3 frames of 1 spp each (${progress.frames - framesBefore})`);
+    check((await page.textContent('#spp')).startsWith('3 spp'), `the spp read-out: ${await page.textContent('#spp')}`);
 
     const frameTime = await page.textContent('#frame-time');
     check(/render [\d.]+ ms/.test(frameTime), `frame-time read-out: ${frameTime}`);
