@@ -126,7 +126,9 @@ class PathTrace final : public Technique {
       estimate_ = PathTraceEstimate{};
       taken_ = 0;
     }
-    accumulating_ = progressive_;
+    // Until this render ends well (a cancel or an error leaves a partial
+    // pass in the sums), the next one starts again.
+    accumulating_ = false;
     const int start = taken_;
     const int goal = progressive_ ? int(std::min<std::int64_t>(std::int64_t(start) + spp_, max_total_spp_)) : spp_;
 
@@ -183,10 +185,7 @@ class PathTrace final : public Technique {
     while (taken < goal && !estimate_.converged) {
       const int target = taken == 0 ? std::min(goal, min_spp_) : std::min(goal, 2 * taken);
       run_pass(PathPass{width, height, taken, target, seed_, antialias_});
-      if (watcher && watcher->stop_requested()) {
-        accumulating_ = false;  // the pass is partial: the next render starts again
-        throw RenderCancelled();
-      }
+      if (watcher && watcher->stop_requested()) throw RenderCancelled();
       taken = target;
       taken_ = taken;
       ++estimate_.passes;
@@ -211,6 +210,7 @@ class PathTrace final : public Technique {
       }
     }
     estimate_.paths += paths.load();
+    accumulating_ = progressive_;
     if (stats) {
       stats->samples += lookups.load();
       stats->rays += paths.load();

@@ -517,6 +517,21 @@ TEST(PathTraceProgressive, AnyChangeStartsAgain) {
   EXPECT_EQ(max_abs_error(run.image, fresh(scene, run.params)), 0.0);
 }
 
+// A cancelled render leaves a partial pass in the sums: the next one starts
+// again instead of adding to them.
+TEST(PathTraceProgressive, ACancelledRenderStartsAgain) {
+  const Scene scene = progressive_test_scene();
+  ProgressiveRun run({{"spp", 4.0}, {"min_spp", 2.0}, {"progressive", true}});
+  ASSERT_EQ(run.render(scene).spp, 4);
+  RenderProgress progress;
+  progress.request_stop();
+  run.technique->set_progress(&progress);
+  EXPECT_THROW(run.render(scene), RenderCancelled);
+  run.technique->set_progress(nullptr);
+  EXPECT_EQ(run.render(scene).spp, 4);
+  EXPECT_EQ(run.render(scene).spp, 8);
+}
+
 TEST(PathTraceProgressive, StopsAtMaxTotalSppAndIsOffByDefault) {
   const Scene scene = progressive_test_scene();
   ProgressiveRun capped({{"spp", 4.0}, {"min_spp", 2.0}, {"progressive", true}, {"max_total_spp", 6.0}});
@@ -534,7 +549,8 @@ TEST(PathTraceProgressive, StopsAtMaxTotalSppAndIsOffByDefault) {
 
   // Without `progressive` (the CLI), every render is spp paths of its own.
   ProgressiveRun plain({{"spp", 4.0}, {"min_spp", 2.0}});
-  const Image first = (plain.render(scene), plain.image);
+  plain.render(scene);
+  const Image first = plain.image;
   const PathTraceEstimate& again = plain.render(scene);
   EXPECT_EQ(again.spp, 4);
   EXPECT_EQ(again.renders, 1);
