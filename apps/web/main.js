@@ -149,6 +149,11 @@ const lights = new LightPanel($('lights'), viewInfo, (list, final) => {
 $('add-directional').addEventListener('click', () => lights.addLight('directional'));
 $('add-point').addEventListener('click', () => lights.addLight('point'));
 
+// pathtrace adds spp paths per pixel each frame while nothing changes, and a
+// change waits for the frame in flight: 4 a frame instead of the CLI's 64
+// keeps that wait short (apps/web/README.md has the times).
+const VIEWER_DEFAULTS = { pathtrace: { spp: 4 } };
+
 const techniques = new TechniquePanel($('technique-select'), $('technique-summary'), $('technique-params'),
   (name, params, final) => {
     state.scene.render.technique = name;
@@ -288,7 +293,7 @@ async function startSession(scene) {
 
 async function start() {
   const [techniqueList, volumes] = await Promise.all([api.techniques(), api.volumes()]);
-  techniques.setTechniques(techniqueList.techniques);
+  techniques.setTechniques(techniqueList.techniques, VIEWER_DEFAULTS);
   const select = $('volume-select');
   for (const f of volumes.files) {
     select.append(Object.assign(document.createElement('option'), { value: f.path, textContent: f.path }));
