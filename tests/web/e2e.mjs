@@ -197,6 +197,24 @@ async function run() {
     check(sized.type === 'distant' && sized.angle_deg === 15, `the light is distant with angle_deg 15 (${JSON.stringify(sized)})`);
     check(difference(before, after) > 0.5, `the light's size changed the canvas (by ${difference(before, after).toFixed(2)})`);
 
+    // The size's conversions (light_panel.js setLightSize), without frames.
+    const conversions = await page.evaluate(async () => {
+      const { setLightSize } = await import('./light_panel.js');
+      const steps = (light, sizes) => sizes.map((size) => { setLightSize(light, size); return JSON.stringify(light); });
+      return [
+        ...steps({ type: 'directional', direction: [0, 0, -1] }, [3, 0]),
+        ...steps({ type: 'point', position: [0, 0, 9] }, [2, 0]),
+        ...steps({ type: 'distant', direction: [0, 0, -1], profile: 'gaussian', angle_deg: 4 }, [0]),
+        ...steps({ type: 'disk', position: [0, 0, 9], direction: [0, 0, -1], radius: 1 }, [0]),
+      ];
+    });
+    check(JSON.stringify(conversions) === JSON.stringify([
+      '{"type":"distant","direction":[0,0,-1],"angle_deg":3}', '{"type":"directional","direction":[0,0,-1]}',
+      '{"type":"sphere","position":[0,0,9],"radius":2}', '{"type":"point","position":[0,0,9]}',
+      '{"type":"distant","direction":[0,0,-1],"profile":"gaussian","angle_deg":0}',
+      '{"type":"disk","position":[0,0,9],"direction":[0,0,-1],"radius":0}',
+    ]), `sizes convert directional <-> distant and point <-> sphere only (${conversions.join(' ')})`);
+
     // 7. pathtrace, progressive: a scene loaded with 1 path per pixel a frame
     // and at most 3; the viewer asks for frames until the server says done.
     const traced = await page.evaluate(() => {
