@@ -22,10 +22,12 @@ const state = {
 
 // Read by the end-to-end test (tests/web): frames drawn, and whether the
 // viewer has settled (no frame in flight or scheduled).
-// spp / converged: the path-traced estimate last shown (0 for other techniques).
+// spp / converged: the path-traced estimate last shown (0 for other
+// techniques); reference: the same for the reference view.
 const status = {
   frames: 0, fullFrames: 0, errors: 0, spp: 0, converged: false,
-  idle: () => scheduler.idle() && !busy,
+  reference: { frames: 0, spp: 0, converged: false },
+  idle: () => scheduler.idle() && referenceScheduler.idle() && !busy,
   scene: () => state.scene,
 };
 window.penumbraViewer = status;
@@ -33,6 +35,7 @@ let busy = 0;  // requests other than frames in progress
 
 const view = $('view');
 const scheduler = new FrameScheduler(renderFrame);
+const referenceScheduler = new FrameScheduler(renderReference);
 
 function showError(error) {
   const box = $('error');
@@ -94,9 +97,69 @@ async function renderFrame(kind) {
   }
 }
 
+// ---------------------------------------------------------------- the reference view
+// "Reference" shows pathtrace of the same scene beside the technique, so the
+// converging soft-shadow reference and the technique can be looked at side
+// by side. It renders in a session of its own: a session keeps one scene,
+// and the technique's frames would otherwise start pathtrace's estimate
+// again each time. Its parameters are the technique panel's for pathtrace.
+const reference = { on: false, session: null };
+
+function referenceScene() {
+  const scene = JSON.parse(JSON.stringify(state.scene));
+  scene.render.technique = 'pathtrace';
+  scene.render.params = techniques.paramsFor('pathtrace');
+  return scene;
+}
+
+async function renderReference(kind) {
+  if (!reference.on || !state.scene) return;
+  const preview = kind === 'preview';
+  const width = preview ? Math.max(32, Math.round(state.size / 2)) : state.size;
+  const scene = referenceScene();
+  let frame;
+  try {
+    if (!reference.session) reference.session = (await api.createSession(scene)).id;
+    frame = await api.frame(reference.session, { scene, width, height: width, format: 'jpeg', quality: preview ? 70 : 90, preview });
+  } catch (e) {
+    if (e instanceof ApiError && e.status === 409) return;
+    if (e instanceof ApiError && e.status === 404 && e.key === 'session') {
+      reference.session = null;  // expired: the next frame starts another
+      referenceScheduler.full();
+      return;
+    }
+    showError(e);
+    return;
+  }
+  const image = await createImageBitmap(frame.blob);
+  const canvas = $('reference');
+  canvas.getContext('2d').drawImage(image, 0, 0, canvas.width, canvas.height);
+  image.close();
+  status.reference = { frames: status.reference.frames + 1, spp: frame.spp, converged: frame.converged };
+  $('reference-spp').textContent = `pathtrace · ${frame.spp} spp${frame.converged ? ' ✓' : ''}`;
+  if (!preview && reference.on && !frame.converged) referenceScheduler.refine();
+}
+
+$('reference-toggle').addEventListener('change', () => {
+  reference.on = $('reference-toggle').checked;
+  $('reference-box').hidden = !reference.on;
+  if (reference.on) referenceScheduler.full();
+});
+
 // Any edit: preview frames while it goes on, a full frame when it ends.
 function changed(final) {
-  if (final) scheduler.full(); else scheduler.preview();
+  if (final) {
+    fullFrames();
+  } else {
+    scheduler.preview();
+    if (reference.on) referenceScheduler.preview();
+  }
+}
+
+// A full frame of the view and, when shown, of the reference.
+function fullFrames() {
+  scheduler.full();
+  if (reference.on) referenceScheduler.full();
 }
 
 // ---------------------------------------------------------------- scene -> controls
@@ -183,6 +246,7 @@ if (![...$('size-select').options].some((o) => o.value === String(state.size))) 
 $('size-select').value = String(state.size);
 function applySize() {
   view.width = view.height = state.size;
+  $('reference').width = $('reference').height = state.size;
   if (state.scene) state.scene.render.width = state.scene.render.height = state.size;
 }
 applySize();
@@ -197,7 +261,7 @@ $('volume-select').addEventListener('change', () => withBusy(async () => {
   const volume = value.startsWith('builtin:') ? { builtin: value.slice(8), size: [96, 96, 96] } : { file: value };
   const reply = await api.loadVolume(state.session, volume);
   adopt(reply.scene, reply.volume);
-  scheduler.full();
+  fullFrames();
 }));
 
 // ParaView presets: the server converts them (io/paraview_preset.h) so the
@@ -246,7 +310,7 @@ $('load-scene').addEventListener('change', () => withBusy(async () => {
   if (!file) return;
   const reply = await api.putScene(state.session, JSON.parse(await file.text()));
   adopt(reply.scene, reply.volume);
-  scheduler.full();
+  fullFrames();
 }));
 
 // ---------------------------------------------------------------- mouse on the view
@@ -303,7 +367,7 @@ async function start() {
       { value: `builtin:${b.name}`, textContent: `builtin: ${b.name}`, title: b.doc }));
   }
   await startSession(null);
-  scheduler.full();
+  fullFrames();
 }
 
 withBusy(start);

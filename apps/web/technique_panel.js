@@ -44,7 +44,8 @@ export class TechniquePanel {
   }
 
   current() { return this.select.value; }
-  params() { return { ...(this.values[this.current()] || {}) }; }
+  params() { return this.paramsFor(this.current()); }
+  paramsFor(name) { return { ...(this.values[name] || {}) }; }
   info(name) { return this.techniques.find((t) => t.name === name); }
 
   show(name) {

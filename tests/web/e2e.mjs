@@ -2,7 +2,8 @@
 // viewer in headless Chromium, and the interactions of the issue: the engine
 // CT is shown, the technique is switched (its controls come from the
 // parameter table), a light is dragged on its gizmo and a TF point is moved,
-// a light's size is set, and pathtrace converges progressively.
+// a light's size is set, pathtrace converges progressively, and the
+// reference is shown beside the technique.
 // After each, the canvas must have changed, and no console error may occur.
 // A screenshot goes to OUTPUT_DIR/viewer.png.
 // Usage: node e2e.mjs PENUMBRA_BINARY DATA_DIR OUTPUT_DIR (see run_e2e.sh)
@@ -231,6 +232,24 @@ async function run() {
     check(progress.spp === 3 && progress.converged, `pathtrace reached 3 spp and stopped (${JSON.stringify(progress)})`);
     check(progress.frames - framesBefore === 3, `3 frames of 1 spp each (${progress.frames - framesBefore})`);
     check((await page.textContent('#spp')).startsWith('3 spp'), `the spp read-out: ${await page.textContent('#spp')}`);
+
+    // 8. The reference beside the technique: cone-shadows in the view,
+    // pathtrace (the panel's pathtrace parameters of step 7) beside it.
+    await page.selectOption('#technique-select', 'cone-shadows');
+    await page.check('#reference-toggle');
+    await settled(page, 'reference beside cone-shadows');
+    const referencePixels = await page.evaluate(() => {
+      const small = document.createElement('canvas');
+      small.width = small.height = 64;
+      const ctx = small.getContext('2d');
+      ctx.drawImage(document.getElementById('reference'), 0, 0, 64, 64);
+      return Array.from(ctx.getImageData(0, 0, 64, 64).data);
+    });
+    const shown = await page.evaluate(() => window.penumbraViewer.reference);
+    check(shown.spp === 3 && shown.converged && shown.frames === 3, `the reference converged beside the view (${JSON.stringify(shown)})`);
+    check(meanLevel(referencePixels) > 5, `the reference is not black (mean level ${meanLevel(referencePixels).toFixed(1)})`);
+    check(await page.evaluate(() => window.penumbraViewer.scene().render.technique) === 'cone-shadows', 'the view stays cone-shadows');
+    check(await page.isVisible('#reference'), 'the reference canvas is shown');
 
     const frameTime = await page.textContent('#frame-time');
     check(/render [\d.]+ ms/.test(frameTime), `frame-time read-out: ${frameTime}`);
