@@ -23,7 +23,12 @@
 // given; only the parts that changed are rebuilt. Unknown keys and query
 // parameters are errors.
 // Frames come back as image/jpeg or image/png with X-Prepare-Ms, X-Render-Ms,
-// X-Encode-Ms, X-Samples, X-Rebuilds, X-Technique and X-Step headers.
+// X-Encode-Ms, X-Samples, X-Rebuilds, X-Technique and X-Step headers; a
+// pathtrace frame also with X-Spp (paths per pixel of the estimate it shows)
+// and X-Converged (1 once more frames would add nothing). pathtrace runs
+// progressively here: frames of an unchanged scene (and size and technique
+// parameters) keep adding spp paths per pixel to one estimate, up to
+// max_total_spp; any change starts it again.
 // Renders, volume loads and scene changes run on a RenderQueue, so httplib's
 // handler threads stay free for other clients' cheap requests.
 #include <chrono>

@@ -44,6 +44,10 @@ void add_frame_headers(Response& res, const Frame& frame) {
   res.set_header("X-Rebuilds", std::to_string(frame.rebuilds));
   res.set_header("X-Technique", frame.technique);
   res.set_header("X-Step", fmt::format("{}", frame.step));
+  if (frame.spp > 0) {
+    res.set_header("X-Spp", std::to_string(frame.spp));
+    res.set_header("X-Converged", frame.converged ? "1" : "0");
+  }
 }
 
 Frame render_frame(ServerContext& context, const std::shared_ptr<Session>& session, const FrameRequest& request) {

@@ -1,5 +1,6 @@
 // Frames over loopback: PNG identical to the engine's image, JPEG, previews,
 // rebuilds across frames, every technique, the progressive stream.
+#include "penumbra/analysis/image_metrics.h"
 #include "penumbra/io/image_io.h"
 #include "penumbra/io/scene_json.h"
 #include "penumbra/techniques/registry.h"
@@ -184,6 +185,85 @@ TEST_F(ServerFrames, ProgressiveStreamGoesFromCoarseToFull) {
   EXPECT_EQ(widths, (std::vector<int>{16, 32, 64}));
   EXPECT_NE(r->body.find("--penumbra-frame--"), std::string::npos);
   expect_error(c.Get("/api/sessions/0123456789abcdef/progressive?width=64&height=64"), 404, "session");
+}
+
+// pathtrace in the server is progressive: frames of an unchanged scene add
+// to one estimate, which X-Spp counts; a change starts it again.
+TEST_F(ServerFrames, PathtraceFramesOfAnUnchangedSceneReportGrowingSampleCounts) {
+  json scene = small_scene("pathtrace");
+  scene["render"]["params"] = {{"spp", 2}, {"min_spp", 2}, {"max_total_spp", 6}};
+  const std::string id = server.create_session(scene);
+  const auto spp = [&](const json& s, std::string* converged = nullptr) {
+    const auto r = frame(id, frame_body(16, 16, "png", {{"scene", s}}));
+    EXPECT_EQ(r->status, 200) << r->body;
+    if (converged) *converged = r->get_header_value("X-Converged");
+    return std::stoi(r->get_header_value("X-Spp"));
+  };
+  std::string converged;
+  EXPECT_EQ(spp(scene, &converged), 2);
+  EXPECT_EQ(converged, "0");
+  EXPECT_EQ(spp(scene), 4);
+  EXPECT_EQ(spp(scene, &converged), 6);
+  EXPECT_EQ(converged, "1");  // at max_total_spp
+  EXPECT_EQ(spp(scene), 6);
+  scene["camera"]["eye"] = {-20, -40, 20};
+  EXPECT_EQ(spp(scene), 2);
+  EXPECT_EQ(spp(scene), 4);
+  scene["lights"][0]["intensity"] = 1.2;
+  EXPECT_EQ(spp(scene), 2);
+  // A preview (coarser step) is another state; the full frame after it too.
+  const auto preview = frame(id, frame_body(16, 16, "png", {{"scene", scene}, {"preview", true}}));
+  EXPECT_EQ(preview->get_header_value("X-Spp"), "2");
+  EXPECT_EQ(spp(scene), 2);
+  // A client may turn it off: every frame is then spp paths of its own.
+  scene["render"]["params"]["progressive"] = false;
+  EXPECT_EQ(spp(scene), 2);
+  EXPECT_EQ(spp(scene, &converged), 2);
+  EXPECT_EQ(converged, "1");
+  // Other techniques send no sample count.
+  scene["render"]["technique"] = "shadow-rays";
+  scene["render"]["params"] = json::object();
+  const auto other = frame(id, frame_body(16, 16, "png", {{"scene", scene}}));
+  EXPECT_FALSE(other->has_header("X-Spp"));
+}
+
+// The viewer's light "size" control sends a distant light's angle_deg (or a
+// sphere's or disk's radius) in the scene; the techniques that follow the
+// light's size render it differently, and bad sizes are 400s naming the key.
+TEST_F(ServerFrames, ALightSizeUpdateChangesTheSceneLightAndTheFrame) {
+  json scene = small_scene("cone-shadows", 32);
+  scene["lights"][0] = {{"type", "distant"}, {"direction", {0.4, 0.5, -1.0}}, {"intensity", 1.5}, {"angle_deg", 0}};
+  const std::string id = server.create_session(scene);
+  for (const json& technique : {json{{"cone-shadows", json::object()}},
+                                json{{"shadow-rays", {{"light_samples", 16}}}},
+                                json{{"pathtrace", {{"spp", 4}, {"min_spp", 2}}}}}) {
+    const std::string name = technique.begin().key();
+    SCOPED_TRACE(name);
+    scene["render"]["technique"] = name;
+    scene["render"]["params"] = technique.begin().value();
+    scene["lights"][0]["angle_deg"] = 0;
+    const auto hard = frame(id, frame_body(24, 24, "png", {{"scene", scene}}));
+    scene["lights"][0]["angle_deg"] = 20;
+    const auto soft = frame(id, frame_body(24, 24, "png", {{"scene", scene}}));
+    ASSERT_TRUE(hard && soft);
+    ASSERT_EQ(soft->status, 200) << soft->body;
+    if (name == "pathtrace") EXPECT_EQ(soft->get_header_value("X-Spp"), "4");  // started again
+    const Image a = decode_png(std::span(reinterpret_cast<const std::uint8_t*>(hard->body.data()), hard->body.size()));
+    const Image b = decode_png(std::span(reinterpret_cast<const std::uint8_t*>(soft->body.data()), soft->body.size()));
+    EXPECT_GT(max_abs_error(a, b), 0.02) << "the light's size changes the frame";
+  }
+  auto c = server.client();
+  const json stored = json::parse(c.Get(session_path(id, "/scene").c_str())->body);
+  EXPECT_EQ(stored.at("lights").at(0).at("angle_deg"), 20.0);
+
+  scene["lights"][0]["angle_deg"] = 95;
+  expect_error(frame(id, frame_body(16, 16, "png", {{"scene", scene}})), 400, "lights[0].angle_deg");
+  scene["lights"][0]["angle_deg"] = "wide";
+  expect_error(frame(id, frame_body(16, 16, "png", {{"scene", scene}})), 400, "lights[0].angle_deg");
+  scene["lights"][0] = {{"type", "sphere"}, {"position", {30, 30, 30}}, {"intensity", 2000}, {"radius", -1}};
+  expect_error(frame(id, frame_body(16, 16, "png", {{"scene", scene}})), 400, "lights[0].radius");
+  scene["lights"][0] = {{"type", "directional"}, {"direction", {0.4, 0.5, -1.0}}, {"angle_deg", 3}};
+  expect_error(frame(id, frame_body(16, 16, "png", {{"scene", scene}})), 400, "lights[0].angle_deg");
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include "penumbra/base/error.h"
 #include "penumbra/io/scene_json.h"
+#include "penumbra/techniques/pathtrace/pathtrace.h"
 #include "penumbra/techniques/registry.h"
 #include "server/http_error.h"
 #include "server/volume_histogram.h"
@@ -134,6 +135,13 @@ Frame Session::render(const FrameRequest& request) {
   // A terminal progress bar (pathtrace) is for the CLI; server frames of
   // several sessions would draw over each other's.
   if (params.table().find("progress")) params.set("progress", false);
+  // The viewer shows the path-traced reference converging: frames of an
+  // unchanged scene add to the last one's estimate (pathtrace.h), unless
+  // the client's parameters say otherwise.
+  if (params.table().find("progressive") && !settings.params.count("progressive") &&
+      !settings.params.count(info.name + ".progressive")) {
+    params.set("progressive", true);
+  }
   Technique& t = technique(info);
 
   Frame frame;
@@ -165,6 +173,10 @@ Frame Session::render(const FrameRequest& request) {
   frame.encode_ms = milliseconds(t3 - t2);
   frame.samples = stats.samples;
   frame.rebuilds = t.rebuilds();
+  if (const PathTraceEstimate* e = pathtrace_estimate(t)) {
+    frame.spp = e->spp;
+    frame.converged = e->converged;
+  }
   touch();
   return frame;
 }

@@ -57,6 +57,11 @@ struct Frame {
   double encode_ms = 0.0;
   std::uint64_t samples = 0;
   std::uint64_t rebuilds = 0;  // the technique's rebuilds() after this frame
+  // pathtrace (progressive in the server): the paths per pixel of the
+  // estimate this frame shows, and whether it stopped growing (converged or
+  // at max_total_spp); 0 and false for every other technique.
+  int spp = 0;
+  bool converged = false;
 };
 
 class Session {

@@ -47,6 +47,10 @@ export const api = {
       renderMs: header('X-Render-Ms'),
       encodeMs: header('X-Encode-Ms'),
       samples: header('X-Samples'),
+      // pathtrace: paths per pixel of the estimate shown, and whether it has
+      // stopped growing (apps/server/http_server.h).
+      spp: header('X-Spp'),
+      converged: response.headers.get('X-Converged') === '1',
       technique: response.headers.get('X-Technique'),
     };
   },

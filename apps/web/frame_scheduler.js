@@ -3,11 +3,14 @@
 // nothing has changed for a moment, one full-quality frame. At most one frame
 // is in flight: requests made meanwhile collapse into the latest one, so a
 // slow server never builds up a backlog of stale frames.
+// A third kind, 'refine', is the next frame of a progressive technique
+// (pathtrace, whose estimate grows while nothing changes): asked for only
+// when nothing else is waiting, and any change takes its place.
 
 const SETTLE_MS = 220;
 
 export class FrameScheduler {
-  // render(kind) -> Promise; kind is 'preview' or 'full'.
+  // render(kind) -> Promise; kind is 'preview', 'full' or 'refine'.
   constructor(render) {
     this.render = render;
     this.inFlight = false;
@@ -28,6 +31,13 @@ export class FrameScheduler {
     clearTimeout(this.settleTimer);
     this.settleTimer = null;
     this.pending = 'full';
+    this.pump();
+  }
+
+  // One more frame of the unchanged scene, unless a change is waiting.
+  refine() {
+    if (this.pending || this.settleTimer) return;
+    this.pending = 'refine';
     this.pump();
   }
 

@@ -4,11 +4,45 @@
 // direction toward the light (a filled dot on the front hemisphere, a ring
 // behind). Dragging puts the light in front; with shift held, behind.
 // A point light keeps its distance from the camera target while it moves.
+// Each light has a size, which every technique's softness follows: the
+// angle of a light at infinity (a distant light's angle_deg, in degrees) or
+// the radius of a light at a position (world units). A size above 0 turns a
+// directional light into a distant one and a point light into a sphere, and
+// back at 0 (the limits of those lights as the size goes to 0:
+// src/penumbra/scene/light.h).
 import { hexToLinear, linearToHex } from './color.js';
 import { add, dot, length, normalize, scale, sub } from './vector.js';
 import { cameraFrame } from './camera.js';
 
 const GIZMO = 96;
+
+// Sets a light's size in place (see the top of the file): angle_deg of a
+// light at infinity, radius of one at a position; directional <-> distant
+// and point <-> sphere as the size leaves or reaches 0. A gaussian or
+// anisotropic distant light stays distant.
+export function setLightSize(light, size) {
+  if (light.type === 'directional' || light.type === 'distant') {
+    const plain = !light.profile || light.profile === 'uniform';
+    if (size > 0 || !plain) {
+      light.type = 'distant';
+      light.angle_deg = size;
+    } else {
+      light.type = 'directional';
+      delete light.angle_deg;
+      delete light.profile;
+    }
+  } else if (light.type === 'point' || light.type === 'sphere') {
+    if (size > 0) {
+      light.type = 'sphere';
+      light.radius = size;
+    } else {
+      light.type = 'point';
+      delete light.radius;
+    }
+  } else if (light.type === 'disk') {
+    light.radius = size;
+  }
+}
 
 export class LightPanel {
   // getView() -> {camera, boxSize}; onChange(lights, final).
@@ -67,7 +101,7 @@ export class LightPanel {
 
     const title = document.createElement('div');
     title.className = 'title';
-    title.innerHTML = `<span>${light.type} light</span>`;
+    title.innerHTML = `<span class="light-type">${light.type} light</span>`;
     const remove = document.createElement('button');
     remove.type = 'button';
     remove.textContent = '×';
@@ -114,10 +148,52 @@ export class LightPanel {
     intensity.addEventListener('change', () => setIntensity(true));
     intensityLabel.append('Intensity', readout, intensity);
     box.append(intensityLabel);
+    const size = this.sizeElement(light, title.querySelector('.light-type'));
+    if (size) box.append(size);
 
     this.attachGizmo(gizmo, light);
     this.drawGizmo(gizmo, light);
     return box;
+  }
+
+  // The size slider and number, or null for a light without one (environment).
+  sizeElement(light, typeLabel) {
+    const atInfinity = ['directional', 'distant'].includes(light.type);
+    if (!atInfinity && !['point', 'sphere', 'disk'].includes(light.type)) return null;
+    // Degrees up to 20 (a 40-degree-wide cone); radii up to a quarter of the
+    // volume's diagonal. The number field takes any value the server accepts.
+    const max = atInfinity ? 20 : Math.max(1e-3, this.getView().boxSize / 4);
+    const current = () => (atInfinity ? light.angle_deg : light.radius) || 0;
+    const slider = document.createElement('input');
+    slider.type = 'range';
+    slider.min = 0;
+    slider.max = max;
+    slider.step = atInfinity ? 0.1 : max / 200;
+    slider.className = 'light-size';
+    const number = document.createElement('input');
+    number.type = 'number';
+    number.min = 0;
+    number.step = 'any';
+    number.className = 'light-size-value';
+    const show = () => {
+      slider.value = Math.min(max, current());
+      number.value = +current().toPrecision(4);
+    };
+    show();
+    const apply = (value, final) => {
+      if (!Number.isFinite(value) || value < 0) return;  // the field shows what is wrong until fixed
+      setLightSize(light, value);
+      typeLabel.textContent = `${light.type} light`;
+      this.onChange(this.lights, final);
+    };
+    slider.addEventListener('input', () => { apply(Number(slider.value), false); number.value = +current().toPrecision(4); });
+    slider.addEventListener('change', () => apply(Number(slider.value), true));
+    number.addEventListener('change', () => { apply(Number(number.value), true); show(); });
+    const label = document.createElement('label');
+    label.title = atInfinity ? 'the angular radius of the light (a cone half-angle, or the standard deviation of a gaussian light)'
+      : 'the radius of the light, in world units';
+    label.append(atInfinity ? 'Size (degrees) ' : 'Size (radius) ', number, slider);
+    return label;
   }
 
   attachGizmo(gizmo, light) {

@@ -22,9 +22,12 @@ const state = {
 
 // Read by the end-to-end test (tests/web): frames drawn, and whether the
 // viewer has settled (no frame in flight or scheduled).
+// spp / converged: the path-traced estimate last shown (0 for other
+// techniques); reference: the same for the reference view.
 const status = {
-  frames: 0, fullFrames: 0, errors: 0,
-  idle: () => scheduler.idle() && !busy,
+  frames: 0, fullFrames: 0, errors: 0, spp: 0, converged: false,
+  reference: { frames: 0, spp: 0, converged: false },
+  idle: () => scheduler.idle() && referenceScheduler.idle() && !busy,
   scene: () => state.scene,
 };
 window.penumbraViewer = status;
@@ -32,6 +35,7 @@ let busy = 0;  // requests other than frames in progress
 
 const view = $('view');
 const scheduler = new FrameScheduler(renderFrame);
+const referenceScheduler = new FrameScheduler(renderReference);
 
 function showError(error) {
   const box = $('error');
@@ -75,9 +79,17 @@ async function renderFrame(kind) {
   status.frames++;
   if (!preview) status.fullFrames++;
   const total = performance.now() - started;
+  status.spp = frame.spp;
+  status.converged = frame.converged;
+  const spp = frame.spp > 0 ? ` · ${frame.spp} spp${frame.converged ? ' (done)' : ''}` : '';
   $('frame-time').textContent =
-    `${preview ? 'preview' : 'full'} ${width}² · ${frame.technique} · prepare ${frame.prepareMs.toFixed(1)} ms · ` +
+    `${preview ? 'preview' : 'full'} ${width}² · ${frame.technique}${spp} · prepare ${frame.prepareMs.toFixed(1)} ms · ` +
     `render ${frame.renderMs.toFixed(1)} ms · encode ${frame.encodeMs.toFixed(1)} ms · round trip ${total.toFixed(0)} ms`;
+  $('spp').textContent = frame.spp > 0 ? `${frame.spp} spp${frame.converged ? ' ✓' : ''}` : '';
+  // A progressive estimate (pathtrace) keeps growing while nothing changes:
+  // ask for the next frame until the server says it has converged (every
+  // pixel met target_error, or max_total_spp).
+  if (!preview && frame.spp > 0 && !frame.converged) scheduler.refine();
   if (!preview && state.histogramStale) {
     state.histogramStale = false;
     const info = await withBusy(() => api.volumeInfo(state.session));
@@ -85,9 +97,69 @@ async function renderFrame(kind) {
   }
 }
 
+// ---------------------------------------------------------------- the reference view
+// "Reference" shows pathtrace of the same scene beside the technique, so the
+// converging soft-shadow reference and the technique can be looked at side
+// by side. It renders in a session of its own: a session keeps one scene,
+// and the technique's frames would otherwise start pathtrace's estimate
+// again each time. Its parameters are the technique panel's for pathtrace.
+const reference = { on: false, session: null };
+
+function referenceScene() {
+  const scene = JSON.parse(JSON.stringify(state.scene));
+  scene.render.technique = 'pathtrace';
+  scene.render.params = techniques.paramsFor('pathtrace');
+  return scene;
+}
+
+async function renderReference(kind) {
+  if (!reference.on || !state.scene) return;
+  const preview = kind === 'preview';
+  const width = preview ? Math.max(32, Math.round(state.size / 2)) : state.size;
+  const scene = referenceScene();
+  let frame;
+  try {
+    if (!reference.session) reference.session = (await api.createSession(scene)).id;
+    frame = await api.frame(reference.session, { scene, width, height: width, format: 'jpeg', quality: preview ? 70 : 90, preview });
+  } catch (e) {
+    if (e instanceof ApiError && e.status === 409) return;
+    if (e instanceof ApiError && e.status === 404 && e.key === 'session') {
+      reference.session = null;  // expired: the next frame starts another
+      referenceScheduler.full();
+      return;
+    }
+    showError(e);
+    return;
+  }
+  const image = await createImageBitmap(frame.blob);
+  const canvas = $('reference');
+  canvas.getContext('2d').drawImage(image, 0, 0, canvas.width, canvas.height);
+  image.close();
+  status.reference = { frames: status.reference.frames + 1, spp: frame.spp, converged: frame.converged };
+  $('reference-spp').textContent = `pathtrace · ${frame.spp} spp${frame.converged ? ' ✓' : ''}`;
+  if (!preview && reference.on && !frame.converged) referenceScheduler.refine();
+}
+
+$('reference-toggle').addEventListener('change', () => {
+  reference.on = $('reference-toggle').checked;
+  $('reference-box').hidden = !reference.on;
+  if (reference.on) referenceScheduler.full();
+});
+
 // Any edit: preview frames while it goes on, a full frame when it ends.
 function changed(final) {
-  if (final) scheduler.full(); else scheduler.preview();
+  if (final) {
+    fullFrames();
+  } else {
+    scheduler.preview();
+    if (reference.on) referenceScheduler.preview();
+  }
+}
+
+// A full frame of the view and, when shown, of the reference.
+function fullFrames() {
+  scheduler.full();
+  if (reference.on) referenceScheduler.full();
 }
 
 // ---------------------------------------------------------------- scene -> controls
@@ -140,6 +212,11 @@ const lights = new LightPanel($('lights'), viewInfo, (list, final) => {
 $('add-directional').addEventListener('click', () => lights.addLight('directional'));
 $('add-point').addEventListener('click', () => lights.addLight('point'));
 
+// pathtrace adds spp paths per pixel each frame while nothing changes, and a
+// change waits for the frame in flight: 4 a frame instead of the CLI's 64
+// keeps that wait short (apps/web/README.md has the times).
+const VIEWER_DEFAULTS = { pathtrace: { spp: 4 } };
+
 const techniques = new TechniquePanel($('technique-select'), $('technique-summary'), $('technique-params'),
   (name, params, final) => {
     state.scene.render.technique = name;
@@ -169,6 +246,7 @@ if (![...$('size-select').options].some((o) => o.value === String(state.size))) 
 $('size-select').value = String(state.size);
 function applySize() {
   view.width = view.height = state.size;
+  $('reference').width = $('reference').height = state.size;
   if (state.scene) state.scene.render.width = state.scene.render.height = state.size;
 }
 applySize();
@@ -183,7 +261,7 @@ $('volume-select').addEventListener('change', () => withBusy(async () => {
   const volume = value.startsWith('builtin:') ? { builtin: value.slice(8), size: [96, 96, 96] } : { file: value };
   const reply = await api.loadVolume(state.session, volume);
   adopt(reply.scene, reply.volume);
-  scheduler.full();
+  fullFrames();
 }));
 
 // ParaView presets: the server converts them (io/paraview_preset.h) so the
@@ -232,7 +310,7 @@ $('load-scene').addEventListener('change', () => withBusy(async () => {
   if (!file) return;
   const reply = await api.putScene(state.session, JSON.parse(await file.text()));
   adopt(reply.scene, reply.volume);
-  scheduler.full();
+  fullFrames();
 }));
 
 // ---------------------------------------------------------------- mouse on the view
@@ -279,7 +357,7 @@ async function startSession(scene) {
 
 async function start() {
   const [techniqueList, volumes] = await Promise.all([api.techniques(), api.volumes()]);
-  techniques.setTechniques(techniqueList.techniques);
+  techniques.setTechniques(techniqueList.techniques, VIEWER_DEFAULTS);
   const select = $('volume-select');
   for (const f of volumes.files) {
     select.append(Object.assign(document.createElement('option'), { value: f.path, textContent: f.path }));
@@ -289,7 +367,7 @@ async function start() {
       { value: `builtin:${b.name}`, textContent: `builtin: ${b.name}`, title: b.doc }));
   }
   await startSession(null);
-  scheduler.full();
+  fullFrames();
 }
 
 withBusy(start);

@@ -19,8 +19,13 @@ export class TechniquePanel {
     });
   }
 
-  setTechniques(list) {
+  // `defaults`: technique name -> {param: value} the viewer starts with
+  // instead of the table's default (a scene's own params still win).
+  setTechniques(list, defaults = {}) {
     this.techniques = list;
+    for (const [name, values] of Object.entries(defaults)) {
+      if (!this.values[name]) this.values[name] = { ...values };
+    }
     this.select.replaceChildren(...list.map((t) => {
       const option = document.createElement('option');
       option.value = t.name;
@@ -39,7 +44,8 @@ export class TechniquePanel {
   }
 
   current() { return this.select.value; }
-  params() { return { ...(this.values[this.current()] || {}) }; }
+  params() { return this.paramsFor(this.current()); }
+  paramsFor(name) { return { ...(this.values[name] || {}) }; }
   info(name) { return this.techniques.find((t) => t.name === name); }
 
   show(name) {

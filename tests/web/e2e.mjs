@@ -1,7 +1,9 @@
 // End-to-end test of the web viewer: `penumbra serve` on a free port, the
 // viewer in headless Chromium, and the interactions of the issue: the engine
 // CT is shown, the technique is switched (its controls come from the
-// parameter table), a light is dragged on its gizmo and a TF point is moved.
+// parameter table), a light is dragged on its gizmo and a TF point is moved,
+// a light's size is set, pathtrace converges progressively, and the
+// reference is shown beside the technique.
 // After each, the canvas must have changed, and no console error may occur.
 // A screenshot goes to OUTPUT_DIR/viewer.png.
 // Usage: node e2e.mjs PENUMBRA_BINARY DATA_DIR OUTPUT_DIR (see run_e2e.sh)
@@ -181,6 +183,73 @@ async function run() {
     await settled(page, 'orbit');
     after = await canvasPixels(page);
     check(difference(before, after) > 0.5, `orbiting changed the canvas (by ${difference(before, after).toFixed(2)})`);
+
+    // 6. The first light's size: 15 degrees makes the directional light a
+    // distant one, and cone-shadows (whose cone follows the light, 5 degrees
+    // for a directional one) changes.
+    await page.selectOption('#technique-select', 'cone-shadows');
+    await settled(page, 'technique cone-shadows');
+    before = await canvasPixels(page);
+    await page.locator('.light-size-value').first().fill('15');
+    await page.locator('.light-size-value').first().dispatchEvent('change');
+    await settled(page, 'light size 15 degrees');
+    after = await canvasPixels(page);
+    const sized = await page.evaluate(() => window.penumbraViewer.scene().lights[0]);
+    check(sized.type === 'distant' && sized.angle_deg === 15, `the light is distant with angle_deg 15 (${JSON.stringify(sized)})`);
+    check(difference(before, after) > 0.5, `the light's size changed the canvas (by ${difference(before, after).toFixed(2)})`);
+
+    // The size's conversions (light_panel.js setLightSize), without frames.
+    const conversions = await page.evaluate(async () => {
+      const { setLightSize } = await import('./light_panel.js');
+      const steps = (light, sizes) => sizes.map((size) => { setLightSize(light, size); return JSON.stringify(light); });
+      return [
+        ...steps({ type: 'directional', direction: [0, 0, -1] }, [3, 0]),
+        ...steps({ type: 'point', position: [0, 0, 9] }, [2, 0]),
+        ...steps({ type: 'distant', direction: [0, 0, -1], profile: 'gaussian', angle_deg: 4 }, [0]),
+        ...steps({ type: 'disk', position: [0, 0, 9], direction: [0, 0, -1], radius: 1 }, [0]),
+      ];
+    });
+    check(JSON.stringify(conversions) === JSON.stringify([
+      '{"type":"distant","direction":[0,0,-1],"angle_deg":3}', '{"type":"directional","direction":[0,0,-1]}',
+      '{"type":"sphere","position":[0,0,9],"radius":2}', '{"type":"point","position":[0,0,9]}',
+      '{"type":"distant","direction":[0,0,-1],"profile":"gaussian","angle_deg":0}',
+      '{"type":"disk","position":[0,0,9],"direction":[0,0,-1],"radius":0}',
+    ]), `sizes convert directional <-> distant and point <-> sphere only (${conversions.join(' ')})`);
+
+    // 7. pathtrace, progressive: a scene loaded with 1 path per pixel a frame
+    // and at most 3; the viewer asks for frames until the server says done.
+    const traced = await page.evaluate(() => {
+      const scene = JSON.parse(JSON.stringify(window.penumbraViewer.scene()));
+      scene.render.technique = 'pathtrace';
+      scene.render.params = { spp: 1, min_spp: 2, max_total_spp: 3 };
+      return JSON.stringify(scene);
+    });
+    const framesBefore = await page.evaluate(() => window.penumbraViewer.fullFrames);
+    await page.setInputFiles('#load-scene', { name: 'scene.json', mimeType: 'application/json', buffer: Buffer.from(traced) });
+    await settled(page, 'pathtrace converged');
+    const progress = await page.evaluate(() => ({ spp: window.penumbraViewer.spp, converged: window.penumbraViewer.converged,
+                                                  frames: window.penumbraViewer.fullFrames }));
+    check(progress.spp === 3 && progress.converged, `pathtrace reached 3 spp and stopped (${JSON.stringify(progress)})`);
+    check(progress.frames - framesBefore === 3, `3 frames of 1 spp each (${progress.frames - framesBefore})`);
+    check((await page.textContent('#spp')).startsWith('3 spp'), `the spp read-out: ${await page.textContent('#spp')}`);
+
+    // 8. The reference beside the technique: cone-shadows in the view,
+    // pathtrace (the panel's pathtrace parameters of step 7) beside it.
+    await page.selectOption('#technique-select', 'cone-shadows');
+    await page.check('#reference-toggle');
+    await settled(page, 'reference beside cone-shadows');
+    const referencePixels = await page.evaluate(() => {
+      const small = document.createElement('canvas');
+      small.width = small.height = 64;
+      const ctx = small.getContext('2d');
+      ctx.drawImage(document.getElementById('reference'), 0, 0, 64, 64);
+      return Array.from(ctx.getImageData(0, 0, 64, 64).data);
+    });
+    const shown = await page.evaluate(() => window.penumbraViewer.reference);
+    check(shown.spp === 3 && shown.converged && shown.frames === 3, `the reference converged beside the view (${JSON.stringify(shown)})`);
+    check(meanLevel(referencePixels) > 5, `the reference is not black (mean level ${meanLevel(referencePixels).toFixed(1)})`);
+    check(await page.evaluate(() => window.penumbraViewer.scene().render.technique) === 'cone-shadows', 'the view stays cone-shadows');
+    check(await page.isVisible('#reference'), 'the reference canvas is shown');
 
     const frameTime = await page.textContent('#frame-time');
     check(/render [\d.]+ ms/.test(frameTime), `frame-time read-out: ${frameTime}`);

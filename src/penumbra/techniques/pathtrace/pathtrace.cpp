@@ -48,6 +48,12 @@ double lightness_error_of(const PixelAccumulator& p) {
   return lightness_standard_error(y / n, std::sqrt(variance_of_mean(p, y, p.luminance_squares)));
 }
 
+bool same_versions(const SceneVersions& a, const SceneVersions& b) {
+  return a.data == b.data && a.transfer_function == b.transfer_function && a.lights == b.lights &&
+         a.camera == b.camera && a.material == b.material && a.geometry == b.geometry && a.render == b.render &&
+         a.meshes == b.meshes;
+}
+
 // Delta and ratio tracking take on average majorant x distance tentative
 // collisions to cross a macrocell, so a medium dense enough makes a path
 // cost millions of lookups (and at 1e30 the steps vanish below float
@@ -89,6 +95,17 @@ class PathTrace final : public Technique {
     seed_ = std::uint32_t(params.integer("seed"));
     antialias_ = params.flag("antialias");
     progress_ = params.flag("progress");
+    progressive_ = params.flag("progressive");
+    max_total_spp_ = params.integer("max_total_spp");
+    // Progressive renders continue the estimate only while everything this
+    // prepare() sees is the same: every part of the scene (the version
+    // counters are unique across scenes, so another scene never matches)
+    // and every parameter.
+    if (!accumulating_ || !same_versions(scene.versions(), estimate_versions_) || !(params == estimate_params_)) {
+      accumulating_ = false;
+      estimate_versions_ = scene.versions();
+      estimate_params_ = params;
+    }
   }
 
   void render(const Scene& scene, Image& image, RenderStats* stats) override {
@@ -99,12 +116,25 @@ class PathTrace final : public Technique {
     const std::uint64_t pixels = std::uint64_t(width) * std::uint64_t(height);
     check_memory_budget("pathtrace accumulation buffers",
                         checked_product({pixels, sizeof(PixelAccumulator) + sizeof(vec4)}));
-    accumulators_.assign(pixels, PixelAccumulator{});
-    estimate_ = PathTraceEstimate{};
+    // Progressive: this render adds spp paths per pixel to the estimate of
+    // the previous ones (same state, see prepare()) up to max_total_spp;
+    // otherwise it starts again. Sample s of a pixel uses stream s either
+    // way, so k renders of spp paths equal one render of k * spp.
+    const bool resume = progressive_ && accumulating_ && accumulators_.size() == pixels;
+    if (!resume) {
+      accumulators_.assign(pixels, PixelAccumulator{});
+      estimate_ = PathTraceEstimate{};
+      taken_ = 0;
+    }
+    // Until this render ends well (a cancel or an error leaves a partial
+    // pass in the sums), the next one starts again.
+    accumulating_ = false;
+    const int start = taken_;
+    const int goal = progressive_ ? int(std::min<std::int64_t>(std::int64_t(start) + spp_, max_total_spp_)) : spp_;
 
     ProgressBar bar("pathtrace", progress_);
     RenderProgress* watcher = progress();
-    const double budget = double(pixels) * double(spp_);
+    const double budget = double(pixels) * double(std::max(1, goal - start));
     std::atomic<std::uint64_t> lookups{0};
     std::atomic<std::uint64_t> paths{0};
     std::uint64_t skipped = 0;  // paths that pixels stopped early will not take
@@ -146,19 +176,28 @@ class PathTrace final : public Technique {
         return 0;
       });
     };
-    int taken = 0;  // paths every active pixel has taken
-    while (taken < spp_) {
-      const int target = taken == 0 ? std::min(spp_, min_spp_) : std::min(spp_, 2 * taken);
+    // Passes of min_spp, then doubling sample counts, the same boundaries
+    // whether the estimate grows in one render or over several.
+    const auto all_done = [&] {
+      return std::all_of(accumulators_.begin(), accumulators_.end(), [](const auto& p) { return p.done; });
+    };
+    int taken = start;  // paths every active pixel has taken
+    while (taken < goal && !estimate_.converged) {
+      const int target = taken == 0 ? std::min(goal, min_spp_) : std::min(goal, 2 * taken);
       run_pass(PathPass{width, height, taken, target, seed_, antialias_});
       if (watcher && watcher->stop_requested()) throw RenderCancelled();
       taken = target;
+      taken_ = taken;
       ++estimate_.passes;
-      if (target_error_ > 0.0 && taken >= min_spp_ && taken < spp_) {
+      if (target_error_ > 0.0 && taken >= min_spp_ && taken < (progressive_ ? max_total_spp_ : spp_)) {
         const std::uint64_t stopped = stop_converged_pixels(width, height);
-        skipped += stopped * std::uint64_t(spp_ - taken);
-        if (std::all_of(accumulators_.begin(), accumulators_.end(), [](const auto& p) { return p.done; })) break;
+        skipped += stopped * std::uint64_t(goal - taken);
+        if (all_done()) estimate_.converged = true;
       }
     }
+    estimate_.spp = taken_;
+    estimate_.renders += 1;
+    if (taken_ >= (progressive_ ? max_total_spp_ : spp_)) estimate_.converged = true;
 
     if (image.width() != width || image.height() != height) image = Image(width, height);
     estimate_.standard_error = Image(width, height);
@@ -170,10 +209,11 @@ class PathTrace final : public Technique {
         estimate_.standard_error.at(x, y) = vec4(vec3(standard_error_of(pixel)), float(pixel.paths));
       }
     }
-    estimate_.paths = paths.load();
+    estimate_.paths += paths.load();
+    accumulating_ = progressive_;
     if (stats) {
       stats->samples += lookups.load();
-      stats->rays += estimate_.paths;
+      stats->rays += paths.load();
       stats->device = on_device ? Device::Cuda : Device::Cpu;
     }
   }
@@ -221,6 +261,14 @@ class PathTrace final : public Technique {
   std::uint32_t seed_ = 0;
   bool antialias_ = false;
   bool progress_ = true;
+  bool progressive_ = false;
+  int max_total_spp_ = 1;
+  // The progressive estimate: paths every active pixel has taken, whether
+  // the next render may continue it, and the state it belongs to.
+  int taken_ = 0;
+  bool accumulating_ = false;
+  SceneVersions estimate_versions_;
+  ParameterValues estimate_params_;
   std::vector<PixelAccumulator> accumulators_;
   PathTraceEstimate estimate_;
 };
@@ -253,6 +301,12 @@ TechniqueInfo pathtrace_info() {
                               "random positions inside each pixel instead of its centre (which every other "
                               "technique samples)"),
           ParameterSpec::flag("progress", true, "progress bar on stderr while rendering, when stderr is a terminal"),
+          ParameterSpec::flag("progressive", false,
+                              "each render of an unchanged scene and parameters adds spp paths per pixel to the "
+                              "last render's estimate instead of starting again (the web viewer sets it)"),
+          ParameterSpec::integer("max_total_spp", 4096, 1, 1 << 24,
+                                 "progressive: the most paths per pixel the estimate grows to; renders beyond it "
+                                 "return the estimate unchanged"),
       }},
       [] { return std::make_unique<PathTrace>(); }};
 }

@@ -28,12 +28,25 @@
 //   antialias     random positions inside each pixel instead of its centre
 //                 (every other technique samples the centre)
 //   progress      progress bar on stderr when it is a terminal
+//   progressive   off (default): every render starts a new estimate of spp
+//                 paths per pixel (the CLI, compare, bench, Python); on (the
+//                 web viewer's server sets it): a render of the same state as
+//                 the last one -- the scene's version counters and every
+//                 parameter unchanged -- adds spp paths per pixel to the
+//                 last estimate, up to max_total_spp. Sample s of a pixel
+//                 uses stream (seed, pixel, s) however the paths are split
+//                 into renders, so N renders of k spp give exactly the image
+//                 of one render of N k spp (with target_error 0; with it, the
+//                 same too when k = min_spp * 2^j, where the passes coincide)
+//   max_total_spp progressive: the most paths per pixel; once there (or all
+//                 pixels met target_error) renders return the estimate as is
 // Passes
-//   prepare: nothing of its own (the shared macrocell majorants and TF table)
-//   render:  progressive passes of min_spp, then doubling sample counts; after
-//            each pass, pixels whose neighbourhood's error is below
-//            target_error stop. Keeps a per-pixel variance estimate
-//            (pathtrace_estimate()).
+//   prepare: nothing of its own (the shared macrocell majorants and TF
+//            table); notes whether the state differs from the estimate's
+//   render:  passes of min_spp, then doubling sample counts (continuing from
+//            the estimate's count when progressive); after each pass, pixels
+//            whose neighbourhood's error is below target_error stop. Keeps a
+//            per-pixel variance estimate (pathtrace_estimate()).
 #include "penumbra/render/technique.h"
 
 #include <cstdint>
@@ -42,13 +55,20 @@ namespace penumbra {
 
 TechniqueInfo pathtrace_info();
 
-// What the last render() of a pathtrace technique estimated besides the image.
+// What the last render() of a pathtrace technique estimated besides the
+// image. With `progressive` the estimate may span several renders: the
+// counts are of all of them.
 struct PathTraceEstimate {
   // Per pixel: rgb = standard error of the mean radiance per channel (+inf
   // where a pixel has fewer than 2 paths); alpha = the number of paths.
   Image standard_error;
-  std::uint64_t paths = 0;
+  std::uint64_t paths = 0;  // paths in the estimate, all pixels together
   int passes = 0;
+  int spp = 0;              // paths a pixel not stopped early has taken
+  int renders = 0;          // renders that built the estimate (1 without progressive)
+  // Nothing more to add: every pixel met target_error, or spp reached its
+  // most (spp; max_total_spp with progressive).
+  bool converged = false;
 };
 
 // The estimate of `technique`'s last render; nullptr when it is not a

@@ -425,3 +425,138 @@ TEST(PathTrace, ReportsProgressAndStopsWhenAsked) {
 
 }  // namespace
 }  // namespace penumbra
+
+// Progressive pathtrace (the web viewer's reference): renders of an unchanged
+// state add to one estimate; any change starts again.
+namespace penumbra {
+namespace {
+
+struct ProgressiveRun {
+  std::unique_ptr<Technique> technique;
+  ParameterValues params;
+  Image image;
+
+  ProgressiveRun(const ParameterSettings& settings) : technique(find_technique("pathtrace").create()) {
+    params = ParameterValues(find_technique("pathtrace").parameters);
+    params.apply(settings, true);
+  }
+  const PathTraceEstimate& render(const Scene& scene) {
+    technique->prepare(scene, params);
+    technique->render(scene, image);
+    return *pathtrace_estimate(*technique);
+  }
+};
+
+Scene progressive_test_scene() {
+  Scene scene = single_scattering_scene();
+  RenderSettings r = scene.render();
+  r.width = r.height = 24;
+  scene.set_render(r);
+  return scene;
+}
+
+TEST(PathTraceProgressive, RendersOfTheSameStateAddUpToOneLongerRender) {
+  const Scene scene = progressive_test_scene();
+  for (const double target_error : {0.0, 2.0}) {
+    SCOPED_TRACE(target_error);
+    const ParameterSettings base{{"min_spp", 4.0}, {"target_error", target_error}};
+    ProgressiveRun one([&] { auto s = base; s["spp"] = 16.0; return s; }());
+    const PathTraceEstimate reference = one.render(scene);
+    ASSERT_EQ(reference.spp, 16);
+    if (target_error > 0.0) {
+      ASSERT_LT(reference.paths, std::uint64_t(24 * 24 * 16)) << "some pixels should stop early";
+    }
+    ProgressiveRun split([&] {
+      auto s = base;
+      s["spp"] = 8.0;
+      s["progressive"] = true;
+      return s;
+    }());
+    EXPECT_EQ(split.render(scene).spp, 8);
+    const PathTraceEstimate& e = split.render(scene);
+    EXPECT_EQ(e.spp, 16);
+    EXPECT_EQ(e.renders, 2);
+    EXPECT_EQ(e.paths, reference.paths);
+    // The same streams summed in the same order: the same bits.
+    EXPECT_EQ(max_abs_error(split.image, one.image), 0.0);
+    EXPECT_EQ(max_abs_error(e.standard_error, reference.standard_error), 0.0);
+  }
+}
+
+TEST(PathTraceProgressive, AnyChangeStartsAgain) {
+  Scene scene = progressive_test_scene();
+  ProgressiveRun run({{"spp", 4.0}, {"min_spp", 2.0}, {"progressive", true}});
+  run.render(scene);
+  ASSERT_EQ(run.render(scene).spp, 8);
+  const auto fresh = [](const Scene& s, const ParameterValues& params) {
+    auto t = find_technique("pathtrace").create();
+    t->prepare(s, params);
+    Image image;
+    t->render(s, image);
+    return image;
+  };
+  Camera camera = scene.camera();
+  camera.orbit(10.0f, 0.0f);
+  scene.set_camera(camera);
+  const PathTraceEstimate& moved = run.render(scene);
+  EXPECT_EQ(moved.spp, 4);
+  EXPECT_EQ(moved.renders, 1);
+  EXPECT_EQ(max_abs_error(run.image, fresh(scene, run.params)), 0.0);
+  ASSERT_EQ(run.render(scene).spp, 8);
+
+  std::vector<Light> lights = scene.lights();
+  lights[0].type = LightType::Distant;
+  lights[0].angle_deg = 4.0f;
+  scene.set_lights(lights);
+  EXPECT_EQ(run.render(scene).spp, 4);
+  EXPECT_EQ(max_abs_error(run.image, fresh(scene, run.params)), 0.0);
+  ASSERT_EQ(run.render(scene).spp, 8);
+
+  run.params.set("seed", 3.0);
+  EXPECT_EQ(run.render(scene).spp, 4);
+  EXPECT_EQ(max_abs_error(run.image, fresh(scene, run.params)), 0.0);
+}
+
+// A cancelled render leaves a partial pass in the sums: the next one starts
+// again instead of adding to them.
+TEST(PathTraceProgressive, ACancelledRenderStartsAgain) {
+  const Scene scene = progressive_test_scene();
+  ProgressiveRun run({{"spp", 4.0}, {"min_spp", 2.0}, {"progressive", true}});
+  ASSERT_EQ(run.render(scene).spp, 4);
+  RenderProgress progress;
+  progress.request_stop();
+  run.technique->set_progress(&progress);
+  EXPECT_THROW(run.render(scene), RenderCancelled);
+  run.technique->set_progress(nullptr);
+  EXPECT_EQ(run.render(scene).spp, 4);
+  EXPECT_EQ(run.render(scene).spp, 8);
+}
+
+TEST(PathTraceProgressive, StopsAtMaxTotalSppAndIsOffByDefault) {
+  const Scene scene = progressive_test_scene();
+  ProgressiveRun capped({{"spp", 4.0}, {"min_spp", 2.0}, {"progressive", true}, {"max_total_spp", 6.0}});
+  EXPECT_FALSE(capped.render(scene).converged);
+  const PathTraceEstimate& full = capped.render(scene);
+  EXPECT_EQ(full.spp, 6);
+  EXPECT_TRUE(full.converged);
+  const Image at_cap = capped.image;
+  RenderStats stats;
+  capped.technique->prepare(scene, capped.params);
+  capped.technique->render(scene, capped.image, &stats);
+  EXPECT_EQ(stats.rays, 0u) << "nothing left to add";
+  EXPECT_EQ(pathtrace_estimate(*capped.technique)->spp, 6);
+  EXPECT_EQ(max_abs_error(capped.image, at_cap), 0.0);
+
+  // Without `progressive` (the CLI), every render is spp paths of its own.
+  ProgressiveRun plain({{"spp", 4.0}, {"min_spp", 2.0}});
+  plain.render(scene);
+  const Image first = plain.image;
+  const PathTraceEstimate& again = plain.render(scene);
+  EXPECT_EQ(again.spp, 4);
+  EXPECT_EQ(again.renders, 1);
+  EXPECT_TRUE(again.converged);
+  EXPECT_EQ(max_abs_error(plain.image, first), 0.0);
+}
+
+}  // namespace
+}  // namespace penumbra
