@@ -23,9 +23,9 @@
 //   environment  uniform radiance intensity * colour from every direction
 //                (the white-furnace light)
 //
-// Techniques other than the path tracer light with the central direction or
-// position of an area light (hard shadows) and leave environment lights out;
-// the scene's `ambient` is their stand-in for sky light.
+// Soft-shadow techniques take their softness from an area light's size (each
+// technique's first file says how), the others its centre (hard shadows); all
+// but pathtrace leave environment lights out (`ambient` stands in for them).
 #include "penumbra/base/lanes.h"
 #include "penumbra/base/math.h"
 
