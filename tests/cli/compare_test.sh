@@ -58,6 +58,11 @@ expect 0 "report.md" -- "$bin" compare "$src/scenes/shell-point.json" --techniqu
   --param resolution=256 --param pathtrace.spp=4 --param pathtrace.min_spp=4 --param pathtrace.target_error=0 \
   -o "$work/all"
 grep -qF "| occlusion-map |" "$work/all/report.md" || fail "compare --techniques all lacks occlusion-map"
+# And on an area-light reference scene (issue 18): every technique follows the sphere light's size.
+expect 0 "report.md" -- "$bin" compare "$src/scenes/shell-sphere.json" --techniques all --size 16x16 --frames 1 \
+  --param resolution=256 --param pathtrace.spp=4 --param pathtrace.min_spp=4 --param pathtrace.target_error=0 \
+  -o "$work/all-sphere"
+grep -qF "| cssm |" "$work/all-sphere/report.md" || fail "compare --techniques all on shell-sphere lacks cssm"
 # Per-technique objects in render.params, and a prefix that names no technique.
 sed 's/"params": {[^}]*}/"params": {"pathtrace": {"mode": "single", "spp": 4, "min_spp": 4, "target_error": 0}, "shadow-rays": {"shadow_cache": true}}/' \
   "$src/scenes/shell-point.json" > "$work/per-technique.json"
