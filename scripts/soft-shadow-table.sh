@@ -11,9 +11,11 @@
 # Usage: scripts/soft-shadow-table.sh [OUT_DIR]     (default out/soft-shadows)
 #   PENUMBRA=path/to/penumbra   the binary (default build/penumbra)
 #   SAMPLES=N                   shadow-rays' light_samples row (default 16)
+#   ONLY=a,b                    render these techniques again (their rows
+#                               replace the stored ones; after a change to them)
 # Writes OUT_DIR/<scene>/ (compare's output), OUT_DIR/soft-shadows.md (the
 # table), OUT_DIR/soft-shadow-<volume>.csv and .png (mean dE against the
-# light's size, one line per technique, drawn by `penumbra plot`). A scene
+# light's size, one line per shadowing DVR technique, drawn by `penumbra plot`). A scene
 # whose report.json exists is not rendered again.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -30,6 +32,10 @@ for name in "${scenes[@]}"; do
     echo "compare $name" >&2
     "$bin" compare "$root/scenes/$name.json" --techniques all --reference-image "$ref" --frames 1 -o "$out/$name" \
       >/dev/null
+  fi
+  if [ -n "${ONLY:-}" ]; then
+    "$bin" compare "$root/scenes/$name.json" --techniques "$ONLY" --reference-image "$ref" --frames 1 \
+      -o "$out/$name-update" >/dev/null
   fi
   if [ ! -f "$out/$name-samples/report.json" ]; then
     "$bin" compare "$root/scenes/$name.json" --techniques shadow-rays --param "shadow-rays.light_samples=$samples" \
@@ -48,12 +54,21 @@ results = {}  # scene -> technique -> entry
 order = []
 for _, _, _, scene in rows:
     entries = json.load(open(os.path.join(out, scene, "report.json")))["techniques"]
+    update = os.path.join(out, scene + "-update", "report.json")
+    if os.path.exists(update):  # rows rendered again (ONLY=...) replace the first ones
+        newer = {e["technique"]: e for e in json.load(open(update))["techniques"]}
+        entries = [newer.get(e["technique"], e) for e in entries]
     entries += [dict(e, technique=f"shadow-rays x{samples}")
                 for e in json.load(open(os.path.join(out, scene + "-samples", "report.json")))["techniques"]]
     results[scene] = {e["technique"]: e for e in entries}
     for e in entries:
         if e["technique"] not in order:
             order.append(e["technique"])
+# In the table, not the plot: no light shadows (emission-absorption, phong,
+# sat-ao's ambient occlusion) or an isosurface instead of DVR (occlusion-map
+# at its default mode=iso), so their errors, 5-40 dE, are not about shadows
+# and would squash the plot's scale.
+unplotted = {"emission-absorption", "phong", "sat-ao", "occlusion-map"}
 def cell(e):
     return f"{e['mean_de']:.2f} / {e['p99_de']:.1f} / {e['frame_ms']:.0f}"
 lines = []
@@ -67,7 +82,7 @@ for volume in ("engine", "head", "shell"):
     lines.append("")
     with open(os.path.join(out, f"soft-shadow-{volume}.csv"), "w") as f:
         f.write("series,x,y\n")
-        for t in order:
+        for t in [t for t in order if t not in unplotted]:
             for r in vrows:
                 if t in results[r[3]]:
                     f.write(f"{t},{r[2]},{results[r[3]][t]['mean_de']}\n")
