@@ -63,7 +63,7 @@ def test_updates_rebuild_only_what_depends_on_the_change():
     assert renderer.stats["rebuilds"] == built  # the light-space tables stay
     assert not np.array_equal(moved, first)
 
-    assert renderer.update(lights=[LIGHT], transfer_function=TF_POINTS, params={"filter_voxels": 5.0}) == []
+    assert renderer.update(lights=[LIGHT], transfer_function=TF_POINTS, params={"filter_voxels": -1.0}) == []  # the defaults again
     renderer.render()
     assert renderer.stats["rebuilds"] == built  # nothing that differs: nothing rebuilt
 
