@@ -108,6 +108,12 @@ Image expect_knob_overrides_light(const Scene& scene, const std::string& techniq
   return overridden;
 }
 
+Light distant_light(float angle_deg, LightProfile profile) {
+  Light light = as_distant(Light{}, angle_deg);
+  light.profile = profile;
+  return light;
+}
+
 Light as_distant(Light light, float angle_deg) {
   light.type = LightType::Distant;
   light.angle_deg = angle_deg;

@@ -32,6 +32,10 @@ float penumbra_width_10_90(const EdgeScene& edge, const Image& image, const Imag
 // divisor above, the same unshadowed lighting for every technique.
 Image unshadowed_floor(const EdgeScene& edge);
 
+// A distant light straight down of the given angle_deg and profile (the edge
+// scene replaces its direction anyway).
+Light distant_light(float angle_deg, LightProfile profile = LightProfile::Uniform);
+
 // `light` as a distant light of the given angular radius (scene/light.h's
 // angle_deg), keeping its direction, colour and intensity.
 Light as_distant(Light light, float angle_deg);

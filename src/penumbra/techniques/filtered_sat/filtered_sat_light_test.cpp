@@ -26,13 +26,7 @@ namespace penumbra {
 namespace {
 
 
-Light fsat_distant(float angle_deg, LightProfile profile) {
-  Light light;
-  light.type = LightType::Distant;
-  light.angle_deg = angle_deg;
-  light.profile = profile;
-  return light;
-}
+Light fsat_distant(float angle_deg, LightProfile profile) { return testing::distant_light(angle_deg, profile); }
 
 Light fsat_directional() { return Light{}; }
 

@@ -61,13 +61,7 @@ float measured_width(const testing::EdgeScene& edge, int light_samples, float ex
   return width;
 }
 
-Light distant(float angle_deg, LightProfile profile) {
-  Light light;
-  light.type = LightType::Distant;
-  light.angle_deg = angle_deg;
-  light.profile = profile;
-  return light;
-}
+Light distant(float angle_deg, LightProfile profile) { return testing::distant_light(angle_deg, profile); }
 
 TEST(ShadowRaysArea, UniformDistantLightPenumbraMatchesTheCircularSegment) {
   const float theta = 6.0f, d = 60.0f;
