@@ -12,6 +12,7 @@
 // depth (inside the 2-voxel slab: d_b is not the mid-plane), by the texels
 // (0.2 world units at resolution 256) and the 48 fixed taps.
 #include "penumbra/analysis/image_metrics.h"
+#include "penumbra/backends/cpu/packets.h"
 #include "penumbra/techniques/registry.h"
 #include "penumbra_edge.h"
 #include "test_scene.h"
@@ -94,6 +95,24 @@ TEST(ShadowMapsPcss, KnobsAndSoftOffOverrideTheLight) {
     EXPECT_LT(rmse(overridden, with(plain, k.technique, {{k.name, k.other}})), 1e-6)
         << k.technique << ": " << k.name << " set, the light's size ignored";
   }
+}
+
+// One kernel source: the packet path (this CPU's widest, SimdMode::Auto)
+// gives the scalar path's PCSS image.
+TEST(ShadowMapsPcss, PacketPathMatchesScalar) {
+  const SimdMode saved = simd_mode();
+  Light light;
+  light.type = LightType::Distant;
+  light.angle_deg = 6.0f;
+  const testing::EdgeScene edge = testing::edge_scene(light, kPcssEdgeDistance, 32);
+  for (const char* technique : {"shadow-map", "deep-shadow-map", "cssm"}) {
+    set_simd_mode(SimdMode::Off);
+    const Image scalar = testing::render_with(edge.scene, technique, {{"resolution", 256.0}});
+    set_simd_mode(SimdMode::Auto);
+    const Image packets = testing::render_with(edge.scene, technique, {{"resolution", 256.0}});
+    EXPECT_LE(rmse(packets, scalar), 1e-4) << technique;
+  }
+  set_simd_mode(saved);
 }
 
 }  // namespace
