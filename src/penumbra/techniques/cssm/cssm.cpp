@@ -12,7 +12,11 @@ class Cssm final : public LightMapTechnique {
  public:
   void prepare(const Scene& scene, const ParameterValues& params) override {
     offset_count_ = std::stoi(params.choice("offsets"));
-    offset_scale_ = float(params.number("offset_scale"));
+    // offset_scale unset (< 0): PCSS for the lights with a size, the
+    // paper's offsets (scale 1) for the others (cssm.h).
+    const double offset_scale = params.number("offset_scale");
+    offset_scale_ = offset_scale < 0.0 ? 1.0f : float(offset_scale);
+    pcss_ = make_pcss(scene.lights(), offset_scale < 0.0 && pcss_enabled(params));
     const int resolution = params.integer("resolution");
     const auto seed = std::uint32_t(params.integer("seed"));
     depth_aware_ = params.choice("filter") == "depth-aware";
@@ -26,13 +30,14 @@ class Cssm final : public LightMapTechnique {
   }
 
   void render(const Scene& scene, Image& image, RenderStats* stats) override {
-    render_lit(scene, make_cssm_visibility(views(), offset_count_, offset_scale_, depth_aware_), image, stats);
+    render_lit(scene, make_cssm_visibility(views(), offset_count_, offset_scale_, depth_aware_, pcss_), image, stats);
   }
 
  private:
   int offset_count_ = 13;
   float offset_scale_ = 1.0f;
   bool depth_aware_ = true;
+  Pcss pcss_{};
 };
 
 }  // namespace
@@ -44,11 +49,14 @@ TechniqueInfo cssm_info() {
       ParameterTable{with_shadow_color_parameters({
           light_map_resolution_parameter(),
           ParameterSpec::choice("offsets", "13", {"7", "13", "21", "37"}, "depth tests averaged per lookup (Fig. 2)"),
-          ParameterSpec::real("offset_scale", 1.0, 0.0, 8.0, "multiplies the offsets (in texels of the map)"),
+          ParameterSpec::real("offset_scale", -1.0, -1.0, 8.0,
+                              "multiplies the offsets (in texels of the map; < 0 = unset: PCSS sized by a light "
+                              "with a size, see soft, else 1)"),
           ParameterSpec::choice("filter", "depth-aware", {"depth-aware", "paper"},
                                 "depth-aware: taps read at the sample's depth below the occluder's entry plane, "
                                 "taps off that plane dropped; paper: every tap at the sample's depth"),
           ParameterSpec::integer("seed", 0, 0, 1 << 30, "random seed of the map generation"),
+          pcss_parameter(),
       })},
       [] { return std::make_unique<Cssm>(); }};
 }

@@ -44,6 +44,7 @@
 #include "penumbra/techniques/cssm/cssm_offsets.h"
 #include "penumbra/techniques/light_space/light_map.h"
 #include "penumbra/techniques/light_space/light_ray.h"
+#include "penumbra/techniques/light_space/pcss.h"
 
 namespace penumbra {
 
@@ -133,6 +134,7 @@ struct CssmVisibility {
   vec2 offsets[kMaxCssmOffsets];  // texels of the map
   int offset_count;
   bool depth_aware = true;
+  Pcss pcss{};  // no light on: the offsets
 
   // Offset j in texels of `map`.
   PENUMBRA_HD vec2 offset(const LightMapView& /*map*/, int j) const { return offsets[j]; }
@@ -172,14 +174,22 @@ struct CssmVisibility {
   template <class L>
   PENUMBRA_HD PENUMBRA_FORCE_INLINE Tap<L> tap(const LightMapView& map, const LightMapPointL<L>& q,
                                                const Plane<L>& plane, int j) const {
-    using F = typename L::Float;
     const vec2 o = offset(map, j);
-    const F tx = floor(q.x + o.x), ty = floor(q.y + o.y);
+    return tap_at<L>(map, q, plane, floor(q.x + o.x), floor(q.y + o.y), depth_aware);
+  }
+
+  // The tap of texel (tx, ty) (whole numbers), with the depth-aware filter
+  // (`aware`) or the paper's.
+  template <class L>
+  PENUMBRA_HD PENUMBRA_FORCE_INLINE Tap<L> tap_at(const LightMapView& map, const LightMapPointL<L>& q,
+                                                  const Plane<L>& plane, typename L::Float tx, typename L::Float ty,
+                                                  bool aware) const {
+    using F = typename L::Float;
     Tap<L> t;
     t.at = map.texel_offset<L>(q.face, to_int(tx), to_int(ty), t.inside);
     t.depth = q.depth;
     t.kept = typename L::Mask(true);
-    if (depth_aware) {
+    if (aware) {
       const F entry = select(t.inside, LightMapView::finite_depth(gather(map.texels, t.at + typename L::Index(3))),
                              F(LightMapView::kFarDepth));
       const F ex = tx + 0.5f - q.x, ey = ty + 0.5f - q.y;
@@ -212,24 +222,41 @@ struct CssmVisibility {
     if (depth_aware) plane = entry_plane<L>(map, q);
     V lit(0.0f);
     F kept(0.0f);
-    for (int j = 0; j < offset_count; ++j) {
-      const Tap<L> t = tap<L>(map, q, plane, j);
+    const auto add = [&](const Tap<L>& t) {
       const auto in_front = [&](int channel) {
         return select(t.kept & ((!t.inside) | (gather(map.texels, t.at + X(channel)) > t.depth)), F(1.0f),
                       F(0.0f));
       };
       lit += V(in_front(0), in_front(1), in_front(2));
       kept += select(t.kept, F(1.0f), F(0.0f));
+    };
+    auto shaded = seen;
+    if (pcss.on(light)) {
+      // The blockers: entries in front of the sample; the taps: the
+      // filter disk's texels, each tested at the sample's depth (the paper's
+      // test: the depth-aware filter would drop the taps beyond an
+      // occluder's edge, the very taps that make the penumbra).
+      typename L::Mask blocked;
+      const F radius = pcss_radius<L>(pcss, light, map, q, 3, 0.0f, blocked);
+      shaded = seen & blocked;
+      if (none(shaded)) return V(1.0f);
+      for (int j = 0; j < kPcssFilterTaps; ++j) {
+        add(tap_at<L>(map, q, plane, floor(q.x + radius * pcss.filter[j].x), floor(q.y + radius * pcss.filter[j].y), false));
+      }
+    } else {
+      for (int j = 0; j < offset_count; ++j) add(tap<L>(map, q, plane, j));
     }
     const auto any_kept = kept > 0.0f;
-    return select(seen & any_kept, lit / max(kept, F(1.0f)), V(1.0f));
+    return select(shaded & any_kept, lit / max(kept, F(1.0f)), V(1.0f));
   }
 };
 
 // The first `count` offsets of the paper's list, times `scale` (texels of
 // the map), with the depth-aware filter or the paper's.
-inline CssmVisibility make_cssm_visibility(const LightMapView* maps, int count, float scale, bool depth_aware = true) {
-  CssmVisibility v{maps, {}, count, depth_aware};
+// `pcss`: the PCSS filter for the lights it has on (light_space/pcss.h).
+inline CssmVisibility make_cssm_visibility(const LightMapView* maps, int count, float scale, bool depth_aware = true,
+                                           const Pcss& pcss = Pcss{}) {
+  CssmVisibility v{maps, {}, count, depth_aware, pcss};
   for (int j = 0; j < count; ++j) v.offsets[j] = scale * vec2(float(kCssmOffsets[j][0]), float(kCssmOffsets[j][1]));
   return v;
 }

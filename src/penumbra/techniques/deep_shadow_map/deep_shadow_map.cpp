@@ -14,6 +14,7 @@ class DeepShadowMap final : public LightMapTechnique {
     const int node_count = params.integer("nodes");
     const float tolerance = float(params.number("tolerance"));
     slope_bias_ = float(params.number("slope_bias"));
+    pcss_ = make_pcss(scene.lights(), pcss_enabled(params));
     const ShadowColorModel colors = shadow_color_model(params);
     std::vector<double> key = {double(resolution), double(node_count), double(tolerance)};
     for (double k : shadow_color_key(colors)) key.push_back(k);
@@ -24,13 +25,14 @@ class DeepShadowMap final : public LightMapTechnique {
   }
 
   void render(const Scene& scene, Image& image, RenderStats* stats) override {
-    render_lit(scene, DeepShadowVisibility{views(), node_count_, bilinear_, slope_bias_}, image, stats);
+    render_lit(scene, DeepShadowVisibility{views(), node_count_, bilinear_, slope_bias_, pcss_}, image, stats);
   }
 
  private:
   int node_count_ = 0;
   bool bilinear_ = false;
   float slope_bias_ = 1.0f;
+  Pcss pcss_{};
 };
 
 }  // namespace
@@ -51,6 +53,7 @@ TechniqueInfo deep_shadow_map_info() {
           ParameterSpec::real("slope_bias", 1.0, 0.0, 4.0,
                               "moves lookups toward the light by this many times the occluder's depth change "
                               "over the texels read (against moire on grazing surfaces; 0: none)"),
+          pcss_parameter(),
       })},
       [] { return std::make_unique<DeepShadowMap>(); }};
 }

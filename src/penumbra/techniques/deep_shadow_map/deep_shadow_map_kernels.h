@@ -6,6 +6,7 @@
 #include "penumbra/techniques/deep_shadow_map/deep_shadow_compression.h"
 #include "penumbra/techniques/light_space/light_map.h"
 #include "penumbra/techniques/light_space/light_ray.h"
+#include "penumbra/techniques/light_space/pcss.h"
 
 namespace penumbra {
 
@@ -77,6 +78,10 @@ inline constexpr float kDeepShadowMaxSlope = 8.0f;
 // the sample and the texel's centre, from the gradient of the entries
 // around the sample (LightMapView::plane_gradient): for slope_bias 1 the
 // same depth below a planar occluder as the sample.
+// With the PCSS filter on for the light (pcss.on(light), light_space/pcss.h)
+// the blockers are the texels whose first node lies in front of the sample,
+// and the filter averages the nearest-texel functions at the sample's depth
+// (moved along the receiver plane as above) over the disk sized by them.
 struct DeepShadowVisibility {
   const LightMapView* maps;
   // The device copy (backends/device.h).
@@ -88,6 +93,7 @@ struct DeepShadowVisibility {
   int node_count;
   bool bilinear;
   float slope_bias = 1.0f;
+  Pcss pcss{};  // no light on: `bilinear` or nearest
 
   // The function of texel (x, y) of `face` at `depth`; lit outside the map.
   template <class L>
@@ -129,6 +135,15 @@ struct DeepShadowVisibility {
     if (none(seen)) return V(1.0f);
     F gx, gy;
     map.receiver_plane<L>(q, 0, kDeepShadowMaxSlope, slope_bias, gx, gy);
+    if (pcss.on(light)) {
+      typename L::Mask blocked;
+      const F radius = pcss_radius<L>(pcss, light, map, q, 0, 0.0f, blocked);
+      const auto shaded = seen & blocked;
+      if (none(shaded)) return V(1.0f);
+      const V value = pcss_filter<L, V>(pcss, q, radius,
+                                        [&](const I& tx, const I& ty) { return plane_value<L>(map, q, tx, ty, gx, gy); });
+      return select(shaded, value, V(1.0f));
+    }
     if (!bilinear) {
       return select(seen, plane_value<L>(map, q, to_int(floor(q.x)), to_int(floor(q.y)), gx, gy), V(1.0f));
     }

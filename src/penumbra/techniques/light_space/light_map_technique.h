@@ -9,6 +9,7 @@
 #include "penumbra/render/technique.h"
 #include "penumbra/techniques/light_space/light_map_set.h"
 #include "penumbra/techniques/light_space/light_ray.h"
+#include "penumbra/techniques/light_space/pcss.h"
 
 #include <cstdint>
 #include <utility>
@@ -58,6 +59,19 @@ inline ParameterSpec light_map_resolution_parameter() {
   return ParameterSpec::integer("resolution", 1024, 256, 4096,
                                 "map texels per side (half per cube face for a point light in or near the volume)");
 }
+
+// The `soft` parameter every light-map technique declares (issue 18,
+// light_space/pcss.h): auto, the PCSS filter sized by each light that has a
+// size (unless the technique's own softness knob is set), the paper's filter
+// for the others; off: the paper's filter for every light.
+inline ParameterSpec pcss_parameter() {
+  return ParameterSpec::choice("soft", "auto", {"auto", "off"},
+                               "auto: a percentage-closer soft-shadow filter sized by each light's angle or radius "
+                               "(lights without a size, or the softness knob set: the paper's filter); off: the "
+                               "paper's filter");
+}
+
+inline bool pcss_enabled(const ParameterValues& params) { return params.choice("soft") == "auto"; }
 
 // The colour parameters of the coloured maps (deep-shadow-map, cssm), see
 // light_ray.h: `colored` (false: grey), `color_model` (chromatic, the

@@ -3,6 +3,7 @@
 #include "penumbra/render/lighting.h"
 #include "penumbra/techniques/light_space/light_map.h"
 #include "penumbra/techniques/light_space/light_ray.h"
+#include "penumbra/techniques/light_space/pcss.h"
 
 namespace penumbra {
 
@@ -59,6 +60,9 @@ inline constexpr float kShadowMapMaxSlope = 8.0f;
 // (LightMapView::plane_gradient, capped at kShadowMapMaxSlope footprints
 // per texel): for slope_bias 1 the comparison a planar occluder would give
 // at the sample's own ray.
+// With the PCSS filter on for the light (pcss.on(light), light_space/pcss.h)
+// the (2 r + 1)^2 box is replaced by the filter disk sized by the light and
+// the blockers' mean depth; each of its taps is the same biased depth test.
 struct ShadowMapVisibility {
   const LightMapView* maps;
   // The device copy (backends/device.h).
@@ -70,6 +74,7 @@ struct ShadowMapVisibility {
   int pcf_radius;
   float bias;  // world units
   float slope_bias = 1.0f;
+  Pcss pcss{};  // no light on: the (2 r + 1)^2 filter
 
   PENUMBRA_HD vec3 operator()(int light, vec3 p, const LightSample& ls) const {
     return lanes<ScalarLanes>(light, p, ls, true);
@@ -92,6 +97,20 @@ struct ShadowMapVisibility {
     const I y = to_int(floor(q.y));
     F gx, gy;
     map.receiver_plane<L>(q, 0, kShadowMapMaxSlope, slope_bias, gx, gy);
+    const auto test = [&](const I& tx, const I& ty) {
+      M inside;
+      const auto at = map.texel_offset<L>(q.face, tx, ty, inside);
+      const F stored = gather(map.texels, at);
+      const F depth = q.depth + gx * (to_float(tx) + 0.5f - q.x) + gy * (to_float(ty) + 0.5f - q.y);
+      return select((!inside) | (depth < stored + bias), F(1.0f), F(0.0f));
+    };
+    if (pcss.on(light)) {
+      M blocked;
+      const F radius = pcss_radius<L>(pcss, light, map, q, 0, bias, blocked);
+      const M shaded = seen & blocked;
+      if (none(shaded)) return typename L::Vec3(1.0f);
+      return typename L::Vec3(select(shaded, pcss_filter<L, F>(pcss, q, radius, test), F(1.0f)));
+    }
     F lit(0.0f);
     for (int dy = -pcf_radius; dy <= pcf_radius; ++dy) {
       for (int dx = -pcf_radius; dx <= pcf_radius; ++dx) {
