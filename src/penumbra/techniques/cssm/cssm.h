@@ -11,7 +11,7 @@
 // the offsets trade its noise for blur.
 //
 // Soft shadows from the light's size (issue 18, light_space/pcss.h): with
-// soft = auto (default) and offset_scale unset (< 0, the default), a light with a
+// soft = auto (an option; default off, see light_map_technique.h) and offset_scale unset (< 0, the default), a light with a
 // size (distant angle_deg, sphere/disk radius) gets a PCSS filter: a blocker
 // search sized by the light, the mean blocker depth d_b, then 48 stochastic tests at the sample's depth over a
 // disk of half-width w = (d_r - d_b) tan(theta) (distant; a gaussian light
@@ -35,7 +35,7 @@
 //   seed          the random numbers of the generation (deterministic)
 //   colored, color_model, saturation
 //                 the colour model (light_ray.h, light_map_technique.h)
-//   soft          auto (default): the PCSS filter for lights with a size; off:
+//   soft          auto: the PCSS filter for lights with a size; off (default):
 //                 the paper's filter (light_map_technique.h)
 // Passes
 //   prepare: one map per light, rebuilt only when the data, TF (or shadow

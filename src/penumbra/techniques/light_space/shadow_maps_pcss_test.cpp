@@ -35,7 +35,7 @@ float pcss_edge_width(const std::string& technique, float theta_deg) {
   light.type = LightType::Distant;
   light.angle_deg = theta_deg;
   const testing::EdgeScene edge = testing::edge_scene(light, kPcssEdgeDistance);
-  const Image image = testing::render_with(edge.scene, technique, {{"resolution", 256.0}});
+  const Image image = testing::render_with(edge.scene, technique, {{"resolution", 256.0}, {"soft", std::string("auto")}});
   const float width = testing::penumbra_width_10_90(edge, image, testing::unshadowed_floor(edge));
   const float model = kPcssSegment1090 * kPcssEdgeDistance * std::tan(glm::radians(theta_deg));
   std::printf("[pcss edge] %s theta %.0f: 10-90 width %.3f, model %.3f (%+.1f %%)\n", technique.c_str(), theta_deg,
@@ -82,15 +82,17 @@ TEST(ShadowMapsPcss, KnobsAndSoftOffOverrideTheLight) {
   };
   for (const Knob& k : {Knob{"shadow-map", "pcf_radius", 0.0, 2.0}, Knob{"cssm", "offset_scale", 1.0, 2.0},
                         Knob{"deep-shadow-map", "", 0.0, 0.0}}) {
-    const Image soft = with(distant, k.technique, {});
-    const Image hard = with(plain, k.technique, {});
+    const ParameterSettings pcss = {{"soft", std::string("auto")}};
+    const Image soft = with(distant, k.technique, pcss);
+    const Image hard = with(plain, k.technique, pcss);
     EXPECT_GT(rmse(soft, hard), 1e-3) << k.technique << ": the light's size softens";
     EXPECT_LT(rmse(with(distant, k.technique, {{"soft", std::string("off")}}), hard), 1e-6)
         << k.technique << ": soft = off, the paper's filter";
+    EXPECT_LT(rmse(with(distant, k.technique, {}), hard), 1e-6) << k.technique << ": off by default";
     if (std::string(k.name).empty()) continue;
     EXPECT_LT(rmse(hard, with(plain, k.technique, {{k.name, k.paper_default}})), 1e-6)
         << k.technique << ": a sizeless light, " << k.name << " unset = " << k.paper_default;
-    const Image overridden = with(distant, k.technique, {{k.name, k.other}});
+    const Image overridden = with(distant, k.technique, {{"soft", std::string("auto")}, {k.name, k.other}});
     EXPECT_GT(rmse(overridden, soft), 1e-3) << k.technique << ": " << k.name << " set, not the light";
     EXPECT_LT(rmse(overridden, with(plain, k.technique, {{k.name, k.other}})), 1e-6)
         << k.technique << ": " << k.name << " set, the light's size ignored";
@@ -107,9 +109,9 @@ TEST(ShadowMapsPcss, PacketPathMatchesScalar) {
   const testing::EdgeScene edge = testing::edge_scene(light, kPcssEdgeDistance, 32);
   for (const char* technique : {"shadow-map", "deep-shadow-map", "cssm"}) {
     set_simd_mode(SimdMode::Off);
-    const Image scalar = testing::render_with(edge.scene, technique, {{"resolution", 256.0}});
+    const Image scalar = testing::render_with(edge.scene, technique, {{"resolution", 256.0}, {"soft", std::string("auto")}});
     set_simd_mode(SimdMode::Auto);
-    const Image packets = testing::render_with(edge.scene, technique, {{"resolution", 256.0}});
+    const Image packets = testing::render_with(edge.scene, technique, {{"resolution", 256.0}, {"soft", std::string("auto")}});
     EXPECT_LE(rmse(packets, scalar), 1e-4) << technique;
   }
   set_simd_mode(saved);

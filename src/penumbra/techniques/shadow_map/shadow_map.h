@@ -7,7 +7,7 @@
 // correct hard shadows; translucent ones cast either none or full shadows.
 //
 // Soft shadows from the light's size (issue 18, light_space/pcss.h): with
-// soft = auto (default) and pcf_radius unset (< 0, the default), a light with a
+// soft = auto (an option; default off, see light_map_technique.h) and pcf_radius unset (< 0, the default), a light with a
 // size (distant angle_deg, sphere/disk radius) gets a PCSS filter: a blocker
 // search sized by the light, the mean blocker depth d_b, then 48 depth tests over a
 // disk of half-width w = (d_r - d_b) tan(theta) (distant; a gaussian light
@@ -27,7 +27,7 @@
 //   depth_bias   added to the stored depth (voxels) against self-shadowing
 //   slope_bias   plus this many times the stored depth's change over the
 //                texels a tap stands for (against acne on grazing surfaces)
-//   soft          auto (default): the PCSS filter for lights with a size; off:
+//   soft          auto: the PCSS filter for lights with a size; off (default):
 //                 the paper's filter (light_map_technique.h)
 // Passes
 //   prepare: one map per light (light_space/: orthographic for directional
