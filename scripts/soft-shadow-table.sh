@@ -6,7 +6,8 @@
 # cone's half-angle) and of the shell under a point light and a sphere light
 # of radius 20. shadow-rays runs twice: at its default (one ray to the
 # light's centre: hard shadows) and with SAMPLES area-light rays (the
-# deterministic soft-shadow reference).
+# deterministic soft-shadow reference); the shadow maps run twice as well,
+# at their default and with their PCSS option (soft=auto).
 #
 # Usage: scripts/soft-shadow-table.sh [OUT_DIR]     (default out/soft-shadows)
 #   PENUMBRA=path/to/penumbra   the binary (default build/penumbra)
@@ -38,7 +39,8 @@ for name in "${scenes[@]}"; do
       -o "$out/$name-update" >/dev/null
   fi
   if [ ! -f "$out/$name-samples/report.json" ]; then
-    "$bin" compare "$root/scenes/$name.json" --techniques shadow-rays --param "shadow-rays.light_samples=$samples" \
+    "$bin" compare "$root/scenes/$name.json" --techniques shadow-rays,shadow-map,deep-shadow-map,cssm \
+      --param "shadow-rays.light_samples=$samples" --param soft=auto \
       --reference-image "$ref" --frames 1 -o "$out/$name-samples" >/dev/null
   fi
 done
@@ -58,7 +60,8 @@ for _, _, _, scene in rows:
     if os.path.exists(update):  # rows rendered again (ONLY=...) replace the first ones
         newer = {e["technique"]: e for e in json.load(open(update))["techniques"]}
         entries = [newer.get(e["technique"], e) for e in entries]
-    entries += [dict(e, technique=f"shadow-rays x{samples}")
+    entries += [dict(e, technique=f"shadow-rays x{samples}" if e["technique"] == "shadow-rays"
+                     else e["technique"] + " soft=auto")
                 for e in json.load(open(os.path.join(out, scene + "-samples", "report.json")))["techniques"]]
     results[scene] = {e["technique"]: e for e in entries}
     for e in entries:
