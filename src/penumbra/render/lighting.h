@@ -126,6 +126,58 @@ PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Vec3 cached_visibility(const Volum
   }
 }
 
+// Where a ray from o along unit d (up to t_max) enters the box, for lanes
+// outside it: t_entry, and the mask of lanes whose ray meets the box. Zero
+// direction components are nudged to +-1e-20 so that no 0 * inf appears.
+template <class L>
+PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Mask box_entry(const Box3& box, const typename L::Vec3& o,
+                                                             const typename L::Vec3& d, const typename L::Float& t_max,
+                                                             typename L::Float& t_entry) {
+  using F = typename L::Float;
+  F t0(0.0f);
+  F t1 = t_max;
+  const auto slab = [&](const F& oa, const F& da, float lo, float hi) {
+    const F safe = select(da >= 0.0f, max(da, F(1e-20f)), min(da, F(-1e-20f)));
+    const F inv = F(1.0f) / safe;
+    const F a = (F(lo) - oa) * inv;
+    const F b = (F(hi) - oa) * inv;
+    t0 = max(t0, min(a, b));
+    t1 = min(t1, max(a, b));
+  };
+  slab(o.x, d.x, box.lower.x, box.upper.x);
+  slab(o.y, d.y, box.lower.y, box.upper.y);
+  slab(o.z, d.z, box.lower.z, box.upper.z);
+  t_entry = t0;
+  return t0 <= t1;
+}
+
+// A cached transmittance along the light ray (the shadow-ray cache: a texel
+// holds the transmittance from the texel toward the light's centre). Outside
+// the box there is no medium, so a point there (a plane hit) sees what the
+// cache holds where its shadow ray enters the box, and 1 where the ray misses
+// it: one lookup instead of a shadow ray through the volume. No cache
+// (data == nullptr): always direct.
+template <class L, class Direct>
+PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Vec3 entry_cached_visibility(const VolumeView& cache, const Box3& box,
+                                                                           const Direct& direct, int light,
+                                                                           const typename L::Vec3& p,
+                                                                           const LightSampleL<L>& ls,
+                                                                           typename L::Mask active) {
+  using F = typename L::Float;
+  using V = typename L::Vec3;
+  if (!cache.data) return light_visibility<L>(direct, light, p, ls, active);
+  const auto inside = box_contains<L>(box, p);
+  if constexpr (L::kWidth == 1) {
+    if (inside) return V(cache.sample(p));
+  } else {
+    if (all(inside | !active)) return V(sample_world<L>(cache, p));
+  }
+  F t_entry;
+  const auto hit = box_entry<L>(box, p, ls.to_light, ls.distance, t_entry);
+  const V q = select(inside, p, p + ls.to_light * t_entry);
+  return V(select(inside | hit, sample_world<L>(cache, q), F(1.0f)));
+}
+
 struct NoShadows {
   template <class Mirror> NoShadows on_device(Mirror&) const { return *this; }
   PENUMBRA_HD vec3 operator()(int, vec3, const LightSample&) const { return vec3(1.0f); }

@@ -53,7 +53,8 @@ struct ShadowRayVisibility {
   }
 };
 
-// Cache lookups inside the volume box; shadow rays outside it (plane hits).
+// Cache lookups inside the volume box; outside it (plane hits) the cache where
+// the shadow ray enters the box, or with light_samples > 1 a shadow ray.
 struct CachedShadowRayVisibility {
   ShadowRayVisibility rays;
   const VolumeView* caches;  // per light
@@ -68,7 +69,11 @@ struct CachedShadowRayVisibility {
   template <class L>
   PENUMBRA_HD typename L::Vec3 lanes(int light, const typename L::Vec3& p, const LightSampleL<L>& ls,
                                      typename L::Mask active) const {
-    return cached_visibility<L>(caches[light], rays.view->box, rays, light, p, ls, active);
+    // An area light's cached mean over its extent depends on the distance to
+    // it, so plane hits march their rays; one ray per light looks up the
+    // cache where its ray enters the box.
+    if (rays.samples_area(light)) return cached_visibility<L>(caches[light], rays.view->box, rays, light, p, ls, active);
+    return entry_cached_visibility<L>(caches[light], rays.view->box, rays, light, p, ls, active);
   }
 };
 
