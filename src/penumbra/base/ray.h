@@ -1,5 +1,6 @@
 #pragma once
 // Rays, boxes and the parameter intervals where a ray overlaps them.
+#include "penumbra/base/lanes.h"
 #include "penumbra/base/math.h"
 
 namespace penumbra {
@@ -29,28 +30,42 @@ struct Interval {
   PENUMBRA_HD float length() const { return empty() ? 0.0f : t1 - t0; }
 };
 
-// Overlap of the ray with the box, restricted to [t_min, t_max]. Axis-parallel
-// rays are handled explicitly so no 0 * inf NaN can appear.
+// Lanes of points inside a box (Box3::contains for lanes).
+template <class L>
+PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Mask box_contains(const Box3& box, const typename L::Vec3& p) {
+  return (p.x >= box.lower.x) & (p.y >= box.lower.y) & (p.z >= box.lower.z) & (p.x <= box.upper.x) &
+         (p.y <= box.upper.y) & (p.z <= box.upper.z);
+}
+
+// Overlap [t0, t1] of rays o + t d with the box, restricted to [t_min, t_max]
+// (t0 and t1 on entry), per lane; empty where !(t0 < t1). A zero direction
+// component keeps that slab's bounds out of the arithmetic (no 0 * inf NaN);
+// where the origin lies outside such a slab the lane gets the empty [0, -1],
+// as do all misses of the scalar intersect_box, whose callers read t0 and t1.
+template <class L>
+PENUMBRA_HD PENUMBRA_FORCE_INLINE void box_overlap(const Box3& box, const typename L::Vec3& o,
+                                                   const typename L::Vec3& d, typename L::Float& t0,
+                                                   typename L::Float& t1) {
+  using F = typename L::Float;
+  const auto slab = [&](const F& oa, const F& da, float lo, float hi) {
+    const auto parallel = da == F(0.0f);
+    const F inv = F(1.0f) / select(parallel, F(1.0f), da);
+    const F a = (F(lo) - oa) * inv;
+    const F b = (F(hi) - oa) * inv;
+    t0 = select(parallel, t0, max(t0, min(a, b)));
+    t1 = select(parallel, t1, min(t1, max(a, b)));
+    return parallel & ((oa < F(lo)) | (oa > F(hi)));
+  };
+  const auto miss = slab(o.x, d.x, box.lower.x, box.upper.x) | slab(o.y, d.y, box.lower.y, box.upper.y) |
+                    slab(o.z, d.z, box.lower.z, box.upper.z);
+  t0 = select(miss, F(0.0f), t0);
+  t1 = select(miss, F(-1.0f), t1);
+}
+
+// The scalar ray's overlap with the box within [t_min, t_max].
 PENUMBRA_HD inline Interval intersect_box(const Ray& ray, const Box3& box, float t_min, float t_max) {
   Interval r{t_min, t_max};
-  for (int axis = 0; axis < 3; ++axis) {
-    const float o = ray.origin[axis];
-    const float d = ray.direction[axis];
-    if (d == 0.0f) {
-      if (o < box.lower[axis] || o > box.upper[axis]) return Interval{};
-      continue;
-    }
-    const float inv = 1.0f / d;
-    float t_near = (box.lower[axis] - o) * inv;
-    float t_far = (box.upper[axis] - o) * inv;
-    if (t_near > t_far) {
-      const float tmp = t_near;
-      t_near = t_far;
-      t_far = tmp;
-    }
-    r.t0 = t_near > r.t0 ? t_near : r.t0;
-    r.t1 = t_far < r.t1 ? t_far : r.t1;
-  }
+  box_overlap<ScalarLanes>(box, ray.origin, ray.direction, r.t0, r.t1);
   return r;
 }
 

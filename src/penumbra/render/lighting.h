@@ -87,13 +87,6 @@ PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Vec3 light_visibility(const Visibi
   }
 }
 
-// Lanes inside a box.
-template <class L>
-PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Mask box_contains(const Box3& box, const typename L::Vec3& p) {
-  return (p.x >= box.lower.x) & (p.y >= box.lower.y) & (p.z >= box.lower.z) & (p.x <= box.upper.x) &
-         (p.y <= box.upper.y) & (p.z <= box.upper.z);
-}
-
 // Trilinear lookups of a grid at world positions (VolumeView::sample for
 // lanes): the shadow caches of shadow-rays, filtered-sat, sat-ao and
 // cone-shadows.
@@ -126,31 +119,6 @@ PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Vec3 cached_visibility(const Volum
   }
 }
 
-// Where a ray from o along unit d (up to t_max) enters the box, for lanes
-// outside it: t_entry, and the mask of lanes whose ray meets the box. Zero
-// direction components are nudged to +-1e-20 so that no 0 * inf appears.
-template <class L>
-PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Mask box_entry(const Box3& box, const typename L::Vec3& o,
-                                                             const typename L::Vec3& d, const typename L::Float& t_max,
-                                                             typename L::Float& t_entry) {
-  using F = typename L::Float;
-  F t0(0.0f);
-  F t1 = t_max;
-  const auto slab = [&](const F& oa, const F& da, float lo, float hi) {
-    const F safe = select(da >= 0.0f, max(da, F(1e-20f)), min(da, F(-1e-20f)));
-    const F inv = F(1.0f) / safe;
-    const F a = (F(lo) - oa) * inv;
-    const F b = (F(hi) - oa) * inv;
-    t0 = max(t0, min(a, b));
-    t1 = min(t1, max(a, b));
-  };
-  slab(o.x, d.x, box.lower.x, box.upper.x);
-  slab(o.y, d.y, box.lower.y, box.upper.y);
-  slab(o.z, d.z, box.lower.z, box.upper.z);
-  t_entry = t0;
-  return t0 <= t1;
-}
-
 // A cached transmittance along the light ray (the shadow-ray cache: a texel
 // holds the transmittance from the texel toward the light's centre). Outside
 // the box there is no medium, so a point there (a plane hit) sees what the
@@ -172,8 +140,10 @@ PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Vec3 entry_cached_visibility(const
   } else {
     if (all(inside | !active)) return V(sample_world<L>(cache, p));
   }
-  F t_entry;
-  const auto hit = box_entry<L>(box, p, ls.to_light, ls.distance, t_entry);
+  F t_entry(0.0f);
+  F t_exit = ls.distance;
+  box_overlap<L>(box, p, ls.to_light, t_entry, t_exit);
+  const auto hit = t_entry <= t_exit;
   const V q = select(inside, p, p + ls.to_light * t_entry);
   return V(select(inside | hit, sample_world<L>(cache, q), F(1.0f)));
 }
