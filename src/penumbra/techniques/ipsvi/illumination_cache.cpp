@@ -9,16 +9,41 @@ namespace penumbra {
 std::vector<vec2> initial_cache_state(const LightCacheProjection& projection, const Box3& box,
                                       const std::vector<vec4>& clip_planes) {
   const int n = projection.size;
-  std::vector<vec2> state(std::size_t(n) * n);
+  // Where each texel's light ray enters the box and clip planes (-1: it
+  // misses them).
+  std::vector<float> entry(std::size_t(n) * n);
   parallel_for(0, n, [&](std::int64_t first, std::int64_t last) {
     for (std::int64_t y = first; y < last; ++y) {
       for (int x = 0; x < n; ++x) {
         const Ray ray = projection.texel_ray(vec2(float(x) + 0.5f, float(y) + 0.5f));
-        const Interval entry = clip_interval(ray, clip_planes.data(), int(clip_planes.size()),
-                                             intersect_box(ray, box, 0.0f, kInfinity));
-        // Light rays that miss the volume keep depth 0: a segment marched
-        // toward it is clipped to the box anyway.
-        state[std::size_t(x + n * y)] = vec2(1.0f, entry.empty() ? 0.0f : entry.t0);
+        const Interval iv = clip_interval(ray, clip_planes.data(), int(clip_planes.size()),
+                                          intersect_box(ray, box, 0.0f, kInfinity));
+        entry[std::size_t(x + n * y)] = iv.empty() ? -1.0f : iv.t0;
+      }
+    }
+  });
+  // A texel starts at the earliest entry of its 3x3 neighbourhood: a sample
+  // reads the four texels around it, and on a face the light grazes (a cut
+  // face) the entries of neighbouring texels differ by many steps, so a
+  // texel starting at its own entry would be ahead of a sample just inside
+  // the face beside it and be left out of its read, in a pattern of the
+  // cache grid. Starting earlier costs only empty space: a segment marched
+  // toward the light is clipped to the box and planes. Light rays whose
+  // whole neighbourhood misses the volume keep depth 0.
+  std::vector<vec2> state(std::size_t(n) * n);
+  parallel_for(0, n, [&](std::int64_t first, std::int64_t last) {
+    for (std::int64_t y = first; y < last; ++y) {
+      for (int x = 0; x < n; ++x) {
+        float earliest = kInfinity;
+        for (int dy = -1; dy <= 1; ++dy) {
+          for (int dx = -1; dx <= 1; ++dx) {
+            const int xx = x + dx, yy = int(y) + dy;
+            if (xx < 0 || yy < 0 || xx >= n || yy >= n) continue;
+            const float e = entry[std::size_t(xx + n * yy)];
+            if (e >= 0.0f) earliest = glm::min(earliest, e);
+          }
+        }
+        state[std::size_t(x + n * y)] = vec2(1.0f, earliest < kInfinity ? earliest : 0.0f);
       }
     }
   });

@@ -412,13 +412,13 @@ TEST(Ipsvi, ShadowTransferFunctionClipPlanesAndPhongAsShadowRays) {
   const Image& image = r.image;
   const double de = mean_de(image, render_with(scene, "shadow-rays"));
   std::printf("shadow TF + clip plane: light work %.2f\n", light_work(r.counts));
-  EXPECT_LT(light_work(r.counts), 4.5);  // measured 3.0
+  EXPECT_LT(light_work(r.counts), 7.5);  // measured 4.9 (3.0 before the cache trailed its writers, issue 21)
   Scene same_tf = scene;
   same_tf.set_shadow_transfer_function(std::nullopt);
   const double shadow_tf_effect = mean_de(image, render_with(same_tf, "ipsvi"));
   std::printf("shadow TF + clip plane + phong: mean dE %.3f (the shadow TF itself changes %.3f)\n", de,
               shadow_tf_effect);
-  EXPECT_LT(de, 0.03);  // measured 0.009
+  EXPECT_LT(de, 0.008);  // measured 0.002 (0.009 before the cache trailed its writers)
   EXPECT_GT(shadow_tf_effect, 5.0 * de);
 }
 

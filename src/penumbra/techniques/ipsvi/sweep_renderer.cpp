@@ -20,6 +20,10 @@ bool same_projection(const LightCacheProjection& a, const LightCacheProjection& 
          a.max_depth == b.max_depth;
 }
 
+// How far (in texel widths) the cache's light trails the samples that wrote
+// it (advance() in render()); measured in docs/ipsvi.md.
+constexpr float kCacheTrailTexels = 4.0f;
+
 struct BlockPixel {
   int x, y;
   float weight;
@@ -165,22 +169,36 @@ void IpsviRenderer::render(const Scene& scene, Image& image, RenderStats* stats)
       // ray (through the texel centre) marched from the stored depth to the
       // block's mean depth, and its diffuse part spread over that distance;
       // without it the mean of the samples' light (Listing 4.1).
+      //
+      // Without the diffuse part the texel is carried only to kCacheTrailTexels
+      // texel widths before the written depth: a sample then marches at least
+      // that far along its own light ray before it takes over a texel's value,
+      // so the texel's offset from its ray (up to one texel) shows less, and
+      // texels written just ahead of a sample on a grazing surface are not
+      // left out of its read (the cache-grid pattern of issue 21). The diffuse
+      // part's spread is tied to the written depth, so it keeps it.
       auto advance = [&](int texel, const CachedLight& stored, const CachedLight& written) {
         if (!kernel.piecewise) return written;
         const int n = kernel.cache.size;
         const vec2 center(float(texel % n) + 0.5f, float(texel / n) + 0.5f);
         const Ray light_ray = kernel.projection.texel_ray(center);
-        const float delta = written.depth - stored.depth;
+        CachedLight target = written;
+        if (!scattering.has_diffuse()) {
+          const vec2 texel_size = kernel.projection.texel_world_size(written.depth);
+          target.depth = written.depth - kCacheTrailTexels * glm::max(texel_size.x, texel_size.y);
+          if (!(target.depth > stored.depth)) return stored;
+        }
+        const float delta = target.depth - stored.depth;
         std::uint64_t samples = 0;
-        const OpticalDepth tau = light_segment_depth(lit_shadow, sampler, light_ray.at(written.depth),
+        const OpticalDepth tau = light_segment_depth(lit_shadow, sampler, light_ray.at(target.depth),
                                                      -light_ray.direction, delta, scattering, samples);
         write_samples.fetch_add(samples, std::memory_order_relaxed);
         CachedLight out;
-        out.depth = written.depth;
+        out.depth = target.depth;
         out.direct = stored.direct * exp_nonpositive(-tau.direct);
         if (scattering.has_diffuse()) {
           const vec2 spread =
-              std::sqrt(delta * scattering.spread_per_length) / kernel.projection.texel_world_size(written.depth);
+              std::sqrt(delta * scattering.spread_per_length) / kernel.projection.texel_world_size(target.depth);
           out.diffuse = kernel.cache.read_diffuse(center, spread) *
                         vec3(exp_nonpositive(-tau.diffuse.r), exp_nonpositive(-tau.diffuse.g),
                              exp_nonpositive(-tau.diffuse.b));
