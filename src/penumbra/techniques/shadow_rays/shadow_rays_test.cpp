@@ -116,19 +116,13 @@ void expect_floor_shadow_matches_optical_depth(const ParameterSettings& params, 
   EXPECT_GT(in_shadow, 5);  // the test sees a real shadow, not only lit floor
 }
 
-Light light_at_45_degrees() {
-  Light light;
-  light.direction = glm::normalize(vec3(1.0f, 0.0f, -1.0f));
-  return light;
-}
+Light light_at_45_degrees() { return testing::directional_light(vec3(1.0f, 0.0f, -1.0f)); }
 
 // A point light above and to the side: the shadow rays converge, and the
 // light's radiance falls off as 1 / d^2 across the floor (intensity chosen so
 // that the floor under the volume sees about 1).
 Light point_light_above() {
-  Light light;
-  light.type = LightType::Point;
-  light.position = vec3(-60.0f, 10.0f, 70.0f);
+  Light light = testing::point_light(vec3(-60.0f, 10.0f, 70.0f));
   light.intensity = 10000.0f;
   return light;
 }
