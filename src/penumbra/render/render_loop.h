@@ -18,11 +18,15 @@
 
 namespace penumbra {
 
-// Per-pixel sample offset: 0.5 (midpoint) or a hashed random value in [0, 1).
-PENUMBRA_HD inline float pixel_sample_offset(const RenderView& v, int x, int y) {
-  if (!v.jitter) return 0.5f;
+// A hashed random value in [0, 1) per pixel (x, y), the same on every backend.
+PENUMBRA_HD inline float pixel_hash_offset(int x, int y) {
   Pcg32 rng(mix_bits((std::uint64_t(std::uint32_t(y)) << 32) | std::uint32_t(x)));
   return rng.next_float();
+}
+
+// Per-pixel sample offset: 0.5 (midpoint) or the pixel's hashed value.
+PENUMBRA_HD inline float pixel_sample_offset(const RenderView& v, int x, int y) {
+  return v.jitter ? pixel_hash_offset(x, y) : 0.5f;
 }
 
 // The per-pixel functor both backends run: the primary ray through the

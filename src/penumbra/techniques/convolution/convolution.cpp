@@ -2,6 +2,8 @@
 
 #include "penumbra/techniques/convolution/slab_renderer.h"
 
+#include <string>
+
 namespace penumbra {
 namespace {
 
@@ -19,6 +21,8 @@ class Convolution final : public Technique {
     s.seed = std::uint64_t(params.integer("seed"));
     s.preintegrated = params.flag("preintegrated");
     s.guard_band = params.flag("guard_band");
+    const std::string jitter = params.choice("jitter");
+    s.jitter = jitter == "on" || (jitter == "scene" && scene.render().jitter);
     renderer_.prepare(scene, s);
   }
 
@@ -56,6 +60,8 @@ TechniqueInfo convolution_info() {
                               "preintegrated compositing of the volume between slabs (Engel et al. 2001)"),
           ParameterSpec::flag("guard_band", true,
                               "sweep the light buffers over a band around the image, so occluders just outside it shadow"),
+          ParameterSpec::choice("jitter", "scene", {"scene", "on", "off"},
+                                "per-pixel sample offset within each slab (scene: the scene's render.jitter)"),
       }},
       [] { return std::make_unique<Convolution>(); },
       /*draws_meshes=*/true};

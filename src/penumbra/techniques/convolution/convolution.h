@@ -21,6 +21,9 @@
 //                       light (sigma_x2 < 0: from the scene's lights)
 //   seed                for the random kernel rotations
 //   preintegrated       preintegrated compositing of the volume (Fig. 19)
+//   guard_band          light buffers over a band around the image
+//   jitter              scene | on | off: per-pixel sample offset within each
+//                       slab (scene: the scene's render.jitter)
 // Passes
 //   prepare: the shared resources and the meshes in world space with their
 //            detail functions and material TFs (mesh_resources.h), when the

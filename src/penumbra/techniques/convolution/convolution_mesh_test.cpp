@@ -68,14 +68,17 @@ float chord(float radius, vec2 offset) {
 
 // Opacity through the sphere is 1 - exp(-sigma chord) at every pixel; a second
 // sphere nested inside the first adds its own optical depth (per-mesh parity:
-// one parity bit for both would call the inner sphere "outside").
-TEST(ConvolutionMeshes, NestedHomogeneousSpheresFollowBeerLambert) {
+// one parity bit for both would call the inner sphere "outside"). With jitter
+// too: the covered length weighs the sample wherever it sits in the slab.
+class NestedSpheres : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(NestedSpheres, FollowBeerLambert) {
   constexpr int kImage = 48;
   constexpr float kHeight = 32.0f;
   Scene scene = mesh_scene(kImage, kHeight, 1.0f);
   scene.set_meshes({homogeneous_sphere(12.0f, vec3(0.0f)), homogeneous_sphere(5.0f, vec3(2.0f, 1.0f, 0.0f), 0.3f)});
-  const Image image = render_with(scene, "convolution");
-  testing::save_test_image(image, "conv_mesh_nested_spheres.png");
+  const Image image = render_with(scene, "convolution", {{"jitter", std::string(GetParam())}});
+  testing::save_test_image(image, std::string("conv_mesh_nested_spheres_jitter_") + GetParam() + ".png");
   const float sigma_inner = -std::log(1.0f - 0.3f);
   float worst = 0.0f;
   int checked = 0;
@@ -94,6 +97,8 @@ TEST(ConvolutionMeshes, NestedHomogeneousSpheresFollowBeerLambert) {
   // (chords within ~0.2%) and the inner sphere's rim in pixels that straddle it.
   EXPECT_LT(worst, 0.02f);
 }
+
+INSTANTIATE_TEST_SUITE_P(ConvolutionMeshes, NestedSpheres, ::testing::Values("off", "on"));
 
 // The shadow of the sphere on a floor far below, with a tilted directional
 // light from behind the viewer: the floor gets lit * exp(-sigma chord), the

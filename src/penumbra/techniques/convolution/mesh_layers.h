@@ -4,10 +4,11 @@
 // face, flipping each mesh's inside/outside parity (the paper's single parity
 // bit, kept per mesh so overlapping meshes work), and measure how much of the
 // slab's depth interval [z0, z1] lies inside any mesh. The mesh medium is
-// sampled once, in the middle of that inside part (the paper samples at the
-// intersection point or a jittered point in the slab; the middle of the
-// covered part makes a homogeneous interior integrate exactly, as the
-// volume's segment rule does, DESIGN-NOTES "Sampling").
+// sampled once in the span of that inside part: at its middle, or at the
+// pixel's jitter offset along it (the paper samples at the intersection point
+// or a jittered point in the slab). The covered length weighs the sample, so
+// a homogeneous interior integrates exactly wherever the sample sits, as the
+// volume's segment rule does (DESIGN-NOTES "Sampling").
 #include "penumbra/techniques/convolution/layered_depth_image.h"
 
 #include <cstdint>
@@ -23,6 +24,7 @@ struct PixelLayers {
 struct SlabCoverage {
   float length = 0.0f;  // depth inside any mesh within [z0, z1]
   float middle = 0.0f;  // depth of the middle of the covered part
+  float first = 0.0f, last = 0.0f;  // depth span of the covered part (gaps included)
   std::uint32_t objects = 0;  // meshes inside at any point of the slab
   int entry = -1;             // the first fragment entering a mesh in this slab (surface highlight), or -1
 };
@@ -68,6 +70,8 @@ PENUMBRA_HD inline SlabCoverage cross_slab(const LdiView& ldi, PixelLayers& p, f
     last = z1;
   }
   c.middle = c.length > 0.0f ? 0.5f * (first + last) : 0.5f * (z0 + z1);
+  c.first = c.length > 0.0f ? first : c.middle;
+  c.last = c.length > 0.0f ? last : c.middle;
   return c;
 }
 

@@ -30,6 +30,7 @@ struct PixelState {
   int plane = -1;
   bool done = false;  // reached an opaque plane
   bool guard = false;  // in the guard band: attenuates light, is not shown
+  float offset = 0.5f;  // where in its part of each slab the pixel samples: 0.5 (middle) or jittered
   float previous_value = std::numeric_limits<float>::quiet_NaN();  // preintegration: the last volume sample
   PixelLayers layers;
 };
@@ -186,6 +187,7 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
         p.ray_dir = ray.direction;
         p.ray_cos = glm::dot(ray.direction, cam.forward);
         p.guard = x < guard || y < guard || x >= width - guard || y >= height - guard;
+        if (settings_.jitter) p.offset = pixel_hash_offset(x - guard, int(y) - guard);
         float t_plane = kInfinity;
         p.plane = nearest_plane(view, ray, kInfinity, t_plane);
         if (p.plane >= 0) p.z_plane = t_plane * p.ray_cos;
@@ -273,10 +275,13 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
             const bool shading = !p.guard && p.transmittance > min_transmittance;
 
             // The volume: the part of the slab inside the box and clip planes,
-            // sampled at its middle (DESIGN-NOTES "Sampling": segments sum to
-            // the chord, so a homogeneous medium integrates exactly).
+            // sampled at its middle or, with jitter, at the pixel's offset
+            // along it (DESIGN-NOTES "Sampling": segments sum to the chord, so
+            // a homogeneous medium integrates exactly either way). The
+            // offset is the pixel's on every slab, as a ray caster's jitter
+            // is the ray's: samples stay one slab apart along the ray.
             const float s0 = glm::max(z0, p.z_in), s1 = glm::min(z1, p.z_out);
-            const float zs = 0.5f * (s0 + s1);
+            const float zs = s0 + p.offset * (s1 - s0);
             bool volume_here = s1 > s0 && !(p.plane >= 0 && p.z_plane <= zs);
             vec4 volume_sample(0.0f);  // (rgb, alpha) along the viewing ray
             float volume_shadow = 0.0f;  // optical depth toward the lights per unit light path
@@ -322,7 +327,7 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
             if (has_meshes) {
               cover = cross_slab(meshes.ldi, p.layers, z0, glm::min(z1, p.z_plane));
               if (cover.length > 0.0f) {
-                mesh_pos = slab_point(frame, x, int(y), cover.middle);
+                mesh_pos = slab_point(frame, x, int(y), cover.first + p.offset * (cover.last - cover.first));
                 const vec4 m = mesh_medium(meshes, cover.objects, mesh_pos);
                 mesh_sample = vec4(vec3(m), 1.0f - exp_nonpositive(-m.a * cover.length / p.ray_cos));
                 mesh_shadow = m.a * cover.length / e;
@@ -392,7 +397,7 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
               if (mesh_sample.a > 0.0f) {
                 for (int l = 0; l < light_count; ++l) mesh_half[l] = 0.5f * mesh_shadow * light_path[std::size_t(l)];
               }
-              if (cover.middle < zs) {
+              if (cover.middle < 0.5f * (s0 + s1)) {  // the parts' middles order them, wherever they sample
                 composite(mesh_sample, mesh_half, mesh_pos, vec3(0.0f), 0.0f, mesh_light);
                 composite(volume_sample, volume_half, volume_pos, volume_index, value, volume_light);
               } else {

@@ -4,8 +4,8 @@
 // to the farthest plane hit, at most one box diagonal beyond it), front to
 // back. Per slab: (1) every light's buffer is convolved from the previous
 // slab's outgoing light (light_propagation.h); then per pixel (3) the volume
-// is sampled once at the middle of the part of the slab that lies inside the
-// box and clip planes (the TF-classified scalar field; that part's length
+// is sampled once at the middle (or, with jitter, at the pixel's hashed
+// offset) of the part of the slab that lies inside the box and clip planes (the TF-classified scalar field; that part's length
 // along the ray is the segment length) and shaded by the shared
 // ScatteringLighting with the buffers as visibility, attenuated by the half
 // of the segment in front of the sample (the ray caster's midpoint rule),
@@ -52,6 +52,7 @@ struct SlabSettings {
   std::uint64_t seed = 1;
   bool preintegrated = false;
   bool guard_band = true;  // light buffers over a band around the image (slab_renderer.cpp)
+  bool jitter = false;     // per-pixel sample offset within each slab (render.jitter, or the technique's knob)
 };
 
 class SlabRenderer {
