@@ -43,7 +43,8 @@ void run_render(const RenderOptions& options) {
     output = "penumbra-demo.png";
   }
   if (!scene.meshes().empty() && !info.draws_meshes) {
-    fmt::print(stderr, "penumbra: warning: {} does not draw the scene's {} mesh(es); convolution does\n", info.name,
+    fmt::print(stderr,
+               "penumbra: warning: {} does not draw the scene's {} mesh(es); convolution and pathtrace do\n", info.name,
                scene.meshes().size());
   }
   using Clock = std::chrono::steady_clock;

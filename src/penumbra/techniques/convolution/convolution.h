@@ -34,7 +34,7 @@
 //            camera and lights: every frame)
 // rebuilds() counts the mesh and layered-depth-image rebuilds.
 // Meshes: the scene's closed triangle meshes (scene/mesh.h) filled with
-// volumetric detail; this is the only technique that draws them.
+// volumetric detail; pathtrace draws them too (its reference), the others not.
 #include "penumbra/render/technique.h"
 
 namespace penumbra {

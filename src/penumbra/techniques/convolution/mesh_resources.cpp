@@ -24,6 +24,8 @@ void MeshResources::update(const Scene& scene) {
   if (scene.versions().meshes == version_ && unit == unit_length_) return;
   version_ = scene.versions().meshes;
   ldi_current_ = false;
+  bvhs_.clear();
+  shapes_.clear();
   if (!scene.meshes().empty()) ++mesh_builds_;
   unit_length_ = unit;
   const std::vector<MeshObject>& meshes = scene.meshes();
@@ -64,6 +66,7 @@ void MeshResources::update(const Scene& scene) {
     v.world_to_object = glm::inverse(meshes[i].object_to_world());
     v.specular = meshes[i].material.specular;
     v.roughness = meshes[i].material.roughness;
+    for (int e = 0; e < v.tf.size; ++e) v.sigma_max = glm::max(v.sigma_max, v.tf.sigma[e]);
     objects_.push_back(v);
   }
 }
@@ -85,12 +88,21 @@ void MeshResources::build_ldi(const CameraView& camera, int width, int height) {
   ++ldi_builds_;
 }
 
-MeshesView MeshResources::view() const { return MeshesView{objects_.data(), int(objects_.size()), ldi_.view()}; }
+void MeshResources::build_shapes() {
+  if (!shapes_.empty() || world_.empty()) return;
+  for (const TriangleMesh& m : world_) bvhs_.emplace_back(m);
+  for (const MeshBvh& b : bvhs_) shapes_.push_back(b.view());
+}
+
+MeshesView MeshResources::view() const {
+  return MeshesView{objects_.data(), int(objects_.size()), ldi_.view(), shapes_.empty() ? nullptr : shapes_.data()};
+}
 
 std::uint64_t MeshResources::bytes() const {
   std::uint64_t n = ldi_.bytes();
   for (const TriangleMesh& m : world_) n += m.positions.size() * sizeof(vec3) + m.triangles.size() * sizeof(glm::uvec3);
   for (const std::vector<vec3>& c : corner_normals_) n += c.size() * sizeof(vec3);
+  for (const MeshBvh& b : bvhs_) n += b.bytes();
   return n;
 }
 

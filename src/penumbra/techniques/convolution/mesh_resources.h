@@ -3,8 +3,10 @@
 // world space with their smooth shading normals (smooth_corner_normals), each
 // mesh's detail function and material TF as plain views (rebuilt when the
 // meshes change), and the layered depth image (rebuilt when the camera, the
-// image size or the meshes change).
+// image size or the meshes change); for ray queries (the path tracer), a BVH
+// per mesh, built on first request after the meshes change.
 #include "penumbra/scene/detail_view.h"
+#include "penumbra/scene/mesh_bvh.h"
 #include "penumbra/scene/scene.h"
 #include "penumbra/techniques/convolution/layered_depth_image.h"
 
@@ -20,12 +22,14 @@ struct MeshMaterialView {
   mat4 world_to_object{1.0f};
   float specular = 0.0f;     // F0
   float roughness = 0.3f;    // GGX alpha
+  float sigma_max = 0.0f;    // the TF's largest extinction: a majorant of the medium
 };
 
 struct MeshesView {
   const MeshMaterialView* objects = nullptr;
   int count = 0;
   LdiView ldi{};
+  const MeshBvhView* shapes = nullptr;  // one per object once build_shapes() ran, else null
 };
 
 class MeshResources {
@@ -36,6 +40,8 @@ class MeshResources {
   // The layered depth image for this camera and size; kept while neither
   // they nor the meshes change (a TF or light edit does not rebuild it).
   void build_ldi(const CameraView& camera, int width, int height);
+  // The BVHs of the world meshes (kept while the meshes do not change).
+  void build_shapes();
   // How often the meshes' world copies and the LDI were rebuilt.
   int builds() const { return mesh_builds_ + ldi_builds_; }
 
@@ -53,6 +59,8 @@ class MeshResources {
   std::vector<TransferFunctionTable> tfs_;
   std::vector<MeshMaterialView> objects_;
   Box3 bounds_{vec3(kInfinity), vec3(-kInfinity)};
+  std::vector<MeshBvh> bvhs_;
+  std::vector<MeshBvhView> shapes_;
   LayeredDepthImage ldi_;
   CameraView ldi_camera_;
   bool ldi_current_ = false;

@@ -18,11 +18,15 @@
 // see together with the background; after a scattering event environment
 // light arrives only through next-event estimation, so nothing is counted
 // twice. Opaque planes block light and paths. The scene's `ambient` is not
-// physical and is ignored.
+// physical and is ignored. The scene's meshes are media of their own added to
+// the volume's (mesh_media.h), scattering with material.albedo times their
+// TF colour like the volume; convolution's surface highlight has no
+// counterpart here.
 #include "penumbra/base/rng.h"
 #include "penumbra/render/lighting.h"
 #include "penumbra/scene/light_sampling.h"
 #include "penumbra/techniques/pathtrace/free_flight.h"
+#include "penumbra/techniques/pathtrace/mesh_media.h"
 #include "penumbra/techniques/pathtrace/phase_sampling.h"
 
 #include <cstdint>
@@ -83,6 +87,7 @@ struct PathKernel {
   const RenderView* shadows;  // the medium toward lights (the shadow TF, if the scene has one)
   Sampler sampler;
   PathSettings settings;
+  MeshesView meshes{};  // the scene's meshes with their BVHs (count 0: none)
 
   // Next-event estimation at p: one sample per light, each scaled by
   // factor(to_light) (the phase function or the cosine) and by the
@@ -99,7 +104,10 @@ struct PathKernel {
       const float f = factor(ls.to_light);
       if (!(f > 0.0f)) continue;
       if (blocked_by_planes(v, p, LightSample{ls.to_light, ls.distance, ls.weight}, skip_plane)) continue;
-      const float transmittance = ratio_tracking(*shadows, sampler, Ray{p, ls.to_light}, ls.distance, rng, lookups);
+      float transmittance = ratio_tracking(*shadows, sampler, Ray{p, ls.to_light}, ls.distance, rng, lookups);
+      if (meshes.count > 0 && transmittance > 0.0f) {
+        transmittance *= mesh_ratio_tracking(meshes, Ray{p, ls.to_light}, ls.distance, rng, lookups);
+      }
       sum += (f * transmittance) * ls.weight;
     }
     return sum;
@@ -130,7 +138,10 @@ struct PathKernel {
       const int plane = nearest_plane_except(v, ray, skip_plane, t_plane);
       const Interval medium = volume_interval(v, ray, 0.0f, t_plane);
       Collision c;
-      const bool collided = delta_tracking(v, sampler, ray, medium.t0, medium.t1, rng, c, lookups);
+      bool collided = delta_tracking(v, sampler, ray, medium.t0, medium.t1, rng, c, lookups);
+      if (meshes.count > 0 && mesh_delta_tracking(meshes, ray, collided ? c.t : t_plane, rng, c, lookups)) {
+        collided = true;
+      }
       if (events == 0) out.hit = collided || plane >= 0;
       if (collided) {
         const vec3 p = ray.at(c.t);

@@ -77,10 +77,38 @@ void check_tracking_cost(const Scene& scene, const float* majorants, std::size_t
   }
 }
 
+// The same bound for each mesh's medium, over its world bounds' diagonal.
+void check_mesh_tracking_cost(const MeshesView& meshes, const std::vector<Box3>& bounds) {
+  for (int m = 0; m < meshes.count; ++m) {
+    const Box3& b = bounds[std::size_t(m)];
+    const double across = double(meshes.objects[m].sigma_max) * double(glm::length(b.upper - b.lower));
+    if (!(across <= kMaxCollisionsAcross)) {
+      throw InvalidScene(fmt::format("meshes[{}].material.transfer_function", m),
+                         fmt::format("pathtrace: the mesh's medium is so dense that a path would take about {:.3g} "
+                                     "tentative collisions to cross it (at most {:.0g}); lower its opacities",
+                                     across, kMaxCollisionsAcross));
+    }
+  }
+}
+
 class PathTrace final : public Technique {
  public:
   void prepare(const Scene& scene, const ParameterValues& params) override {
     resources_.update(scene);
+    meshes_.update(scene);
+    meshes_.build_shapes();
+    std::vector<Box3> bounds;
+    for (const MeshObject& m : scene.meshes()) {
+      const mat4 to_world = m.object_to_world();
+      Box3 b{vec3(kInfinity), vec3(-kInfinity)};
+      for (const vec3& q : m.mesh->positions) {
+        const vec3 w(to_world * vec4(q, 1.0f));
+        b.lower = glm::min(b.lower, w);
+        b.upper = glm::max(b.upper, w);
+      }
+      bounds.push_back(b);
+    }
+    check_mesh_tracking_cost(meshes_.view(), bounds);
     // The shadow TF's majorants share the macrocell grid (and its cell count).
     const std::size_t cells = resources_.majorants().majorant.size();
     check_tracking_cost(scene, resources_.majorants().majorant.data(), cells, "transfer_function");
@@ -143,7 +171,9 @@ class PathTrace final : public Technique {
       bar.update((double(done) + double(skipped)) / budget);
       if (watcher) watcher->report((double(done) + double(skipped)) / budget);
     };
-    const bool on_device = active_device() == Device::Cuda;
+    // Meshes are traced on the CPU only: their BVHs have no device mirror.
+    const MeshesView meshes = meshes_.view();
+    const bool on_device = active_device() == Device::Cuda && meshes.count == 0;
     // One pass: paths [taken, target) of every pixel not done, on the device
     // or over the CPU's tiles, through the same trace_pixel_paths.
     const auto run_pass = [&](const PathPass& pass) {
@@ -157,7 +187,7 @@ class PathTrace final : public Technique {
         return;
       }
       with_sampler(view.volume, [&](const auto& sampler) {
-        const PathKernel<std::decay_t<decltype(sampler)>> kernel{&view, &shadows, sampler, settings_};
+        const PathKernel<std::decay_t<decltype(sampler)>> kernel{&view, &shadows, sampler, settings_, meshes};
         parallel_for_tiles(width, height, 16, [&](int x0, int y0, int x1, int y1) {
           if (watcher && watcher->stop_requested()) return;  // the tiles left are skipped
           std::uint64_t tile_lookups = 0;
@@ -247,13 +277,15 @@ class PathTrace final : public Technique {
   }
 
   std::uint64_t aux_bytes() const override {
-    return accumulators_.size() * sizeof(PixelAccumulator) + estimate_.standard_error.pixel_count() * sizeof(vec4);
+    return accumulators_.size() * sizeof(PixelAccumulator) + estimate_.standard_error.pixel_count() * sizeof(vec4) +
+           meshes_.bytes();
   }
 
   const PathTraceEstimate* estimate() const { return estimate_.standard_error.empty() ? nullptr : &estimate_; }
 
  private:
   SceneResources resources_;
+  MeshResources meshes_;  // the scene's meshes as media (mesh_media.h)
   PathSettings settings_;
   int spp_ = 1;
   int min_spp_ = 1;
@@ -308,7 +340,8 @@ TechniqueInfo pathtrace_info() {
                                  "progressive: the most paths per pixel the estimate grows to; renders beyond it "
                                  "return the estimate unchanged"),
       }},
-      [] { return std::make_unique<PathTrace>(); }};
+      [] { return std::make_unique<PathTrace>(); },
+      /*draws_meshes=*/true};
 }
 
 }  // namespace penumbra

@@ -1,0 +1,111 @@
+#pragma once
+// The scene's closed meshes as media for the path tracer (issue 23): inside
+// mesh m the extinction and colour are its material TF at its detail
+// function, the medium convolution draws (mesh_resources.h). Each mesh is
+// one more medium added to the volume's, and a sum of media can be tracked
+// one medium at a time: the first real collision of the sum is the nearest
+// of the media's own first collisions (independent Poisson processes of
+// rates sigma_i add up to one of rate sum sigma_i, and the collision belongs
+// to medium i with probability sigma_i / sum), and the transmittance of the
+// sum is the product of theirs. So the volume's delta and ratio tracking
+// stay as they are (free_flight.h) and each mesh adds its own, against the
+// majorant sigma_max of its TF over the parts of the ray inside it (the
+// BVH's crossings, sorted; an odd number of crossings from a point to
+// infinity puts the point inside).
+#include "penumbra/base/rng.h"
+#include "penumbra/techniques/convolution/mesh_resources.h"
+#include "penumbra/techniques/pathtrace/free_flight.h"
+
+#include <cstdint>
+
+namespace penumbra {
+
+// Crossings kept per mesh and ray; a ray crossing one mesh more often sees
+// only the nearest 64 (the rest of it counts as outside).
+inline constexpr int kMeshCrossings = 64;
+
+// The parts of `ray` within [0, t_max] inside mesh m, as sorted crossings:
+// calls f(a, b) for each, nearest first, until f returns false.
+template <class F>
+PENUMBRA_HD void for_each_inside_part(const MeshesView& meshes, int m, const Ray& ray, float t_max, const F& f) {
+  float t[kMeshCrossings];
+  const int total = meshes.shapes[m].crossings(ray, 0.0f, kInfinity, t, kMeshCrossings);
+  const int n = total < kMeshCrossings ? total : kMeshCrossings;
+  for (int i = 1; i < n; ++i) {  // insertion sort: n is small
+    const float v = t[i];
+    int j = i - 1;
+    for (; j >= 0 && t[j] > v; --j) t[j + 1] = t[j];
+    t[j + 1] = v;
+  }
+  bool inside = (total % 2) == 1;
+  float from = 0.0f;
+  for (int i = 0; i <= n; ++i) {
+    const float to = i < n ? t[i] : kInfinity;
+    if (inside && from < t_max && !f(from, glm::min(to, t_max))) return;
+    if (to >= t_max) return;
+    inside = !inside;
+    from = to;
+  }
+}
+
+// The medium of mesh m at a world point: (rgb, sigma_t per world unit).
+PENUMBRA_HD inline vec4 mesh_medium_at(const MeshMaterialView& mat, vec3 world) {
+  const vec3 object(mat.world_to_object * vec4(world, 1.0f));
+  return mat.tf.lookup(mat.detail(object));
+}
+
+// Delta tracking through every mesh over [0, t_max]: true and the nearest
+// real collision in `hit` (which keeps the caller's if none is nearer).
+PENUMBRA_HD inline bool mesh_delta_tracking(const MeshesView& meshes, const Ray& ray, float t_max, Pcg32& rng,
+                                            Collision& hit, std::uint64_t& lookups) {
+  bool collided = false;
+  for (int m = 0; m < meshes.count; ++m) {
+    const MeshMaterialView& mat = meshes.objects[m];
+    const float majorant = mat.sigma_max;
+    if (!(majorant > 0.0f)) continue;
+    const float limit = collided ? hit.t : t_max;
+    for_each_inside_part(meshes, m, ray, limit, [&](float a, float b) {
+      for (float t = a;;) {
+        t += exponential_step(rng, majorant);
+        if (t >= b) return true;
+        ++lookups;
+        const vec4 medium = mesh_medium_at(mat, ray.at(t));
+        if (rng.next_float() * majorant < medium.a) {
+          hit = Collision{t, vec3(medium), medium.a};
+          collided = true;
+          return false;
+        }
+      }
+    });
+  }
+  return collided;
+}
+
+// Ratio-tracking estimate of the meshes' transmittance along [0, t_max].
+PENUMBRA_HD inline float mesh_ratio_tracking(const MeshesView& meshes, const Ray& ray, float t_max, Pcg32& rng,
+                                             std::uint64_t& lookups) {
+  float transmittance = 1.0f;
+  for (int m = 0; m < meshes.count && transmittance > 0.0f; ++m) {
+    const MeshMaterialView& mat = meshes.objects[m];
+    const float majorant = mat.sigma_max;
+    if (!(majorant > 0.0f)) continue;
+    for_each_inside_part(meshes, m, ray, t_max, [&](float a, float b) {
+      for (float t = a;;) {
+        t += exponential_step(rng, majorant);
+        if (t >= b) return true;
+        ++lookups;
+        transmittance *= glm::max(0.0f, 1.0f - mesh_medium_at(mat, ray.at(t)).a / majorant);
+        if (transmittance < kRatioRouletteThreshold) {
+          if (rng.next_float() * kRatioRouletteThreshold >= transmittance) {
+            transmittance = 0.0f;
+            return false;
+          }
+          transmittance = kRatioRouletteThreshold;
+        }
+      }
+    });
+  }
+  return transmittance;
+}
+
+}  // namespace penumbra
