@@ -11,7 +11,11 @@
 // Light model and the mapping from the scene's lights: gaussian_light.h.
 //
 // Parameters
-//   slab_distance       e in voxels (0: the scene's render step)
+//   slab_distance       e in voxels (0: automatic, Patel et al. section 7:
+//                       the render step where the volume has extinction, at
+//                       most half the finest detail feature of the meshes
+//                       (lattice cell of the highest octave, or texel), at
+//                       most 4096 slabs)
 //   optimal_distance    d1 in voxels (0: a quarter of the box's depth extent)
 //   kernel              gaussian | poisson | ellipse (slab_kernel.h)
 //   kernel_samples      taps (ellipse N, default 2; poisson N, default 8;

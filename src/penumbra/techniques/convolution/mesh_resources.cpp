@@ -1,5 +1,7 @@
 #include "penumbra/techniques/convolution/mesh_resources.h"
 
+#include <cmath>
+
 namespace penumbra {
 namespace {
 
@@ -15,6 +17,38 @@ vec2 natural_range(const DetailFunction& d) {
       return vec2(0.0f, 1.0f);
   }
   return vec2(0.0f, 1.0f);
+}
+
+// Half the world size of the finest feature of mesh m's detail: a lattice
+// cell of its highest octave, or a texel of its texture stretched over the
+// mesh's object-space bounds; +inf for constant detail. Along each object
+// axis the world length is the axis's column of object_to_world; the
+// smallest axis counts.
+float detail_sampling_distance(const MeshObject& m) {
+  const mat3 to_world(m.object_to_world());
+  const vec3 axis_scale(glm::length(to_world[0]), glm::length(to_world[1]), glm::length(to_world[2]));
+  const DetailFunction& d = m.material.detail;
+  vec3 feature(kInfinity);  // object-space size of the finest feature per axis
+  switch (d.type) {
+    case DetailType::Constant: return kInfinity;
+    case DetailType::Noise: feature = vec3(1.0f / d.frequency); break;
+    case DetailType::Fbm:
+    case DetailType::Ridged: {
+      const int octaves = glm::max(d.fractal.octaves, 1);
+      const float finest = d.frequency * std::pow(glm::max(d.fractal.lacunarity, 1.0f), float(octaves - 1));
+      feature = vec3(1.0f / finest);
+      break;
+    }
+    case DetailType::Texture: {
+      if (!d.texture) return kInfinity;
+      // The texel centres span the bounds, first and last on them (detail_view.h).
+      feature = m.mesh->bounds().extent() / vec3(glm::max(d.texture->dims() - 1, ivec3(1)));
+      break;
+    }
+  }
+  const vec3 world = feature * axis_scale;
+  const float smallest = glm::min(world.x, glm::min(world.y, world.z));
+  return smallest > 0.0f ? 0.5f * smallest : kInfinity;
 }
 
 }  // namespace
@@ -35,8 +69,10 @@ void MeshResources::update(const Scene& scene) {
   tfs_.clear();
   objects_.clear();
   bounds_ = Box3{vec3(kInfinity), vec3(-kInfinity)};
+  detail_distance_ = kInfinity;
   for (std::size_t i = 0; i < meshes.size(); ++i) {
     const MeshObject& m = meshes[i];
+    detail_distance_ = glm::min(detail_distance_, detail_sampling_distance(m));
     const mat4 to_world = m.object_to_world();
     TriangleMesh& w = world_[i];
     w.triangles = m.mesh->triangles;

@@ -48,6 +48,12 @@ class MeshResources {
   bool empty() const { return objects_.empty(); }
   MeshesView view() const;
   Box3 world_bounds() const { return bounds_; }
+  // The slab distance that samples every mesh's detail (Patel et al. 2013,
+  // section 7: from a texture's dimensions, and for procedural detail from
+  // its frequency): half the world size of the finest lattice cell (the
+  // highest octave's) or of a texel, the smallest over the meshes; +inf when
+  // no mesh has detail that varies (constant detail, or no meshes).
+  float detail_slab_distance() const { return detail_distance_; }
   std::uint64_t bytes() const;
 
  private:
@@ -59,6 +65,7 @@ class MeshResources {
   std::vector<TransferFunctionTable> tfs_;
   std::vector<MeshMaterialView> objects_;
   Box3 bounds_{vec3(kInfinity), vec3(-kInfinity)};
+  float detail_distance_ = kInfinity;
   std::vector<MeshBvh> bvhs_;
   std::vector<MeshBvhView> shapes_;
   LayeredDepthImage ldi_;

@@ -87,6 +87,24 @@ PENUMBRA_HD inline float segment_light_factor(float a, float b) {
 
 }  // namespace
 
+// The slab distance when none is set (Patel et al. 2013, section 7): the
+// render step where the volume has any extinction (for the viewer or, with
+// a shadow TF, for the light), and no more than the
+// meshes' detail asks for (MeshResources::detail_slab_distance). A scene
+// whose volume is empty takes the detail's distance alone; with neither,
+// the render step. At most kAutomaticSlabs slabs through the scene's depth.
+float SlabRenderer::automatic_slab_distance(const RenderView& view, const RenderView& shadow, float depth) const {
+  const std::size_t cells = resources_.majorants().majorant.size();
+  const auto any_extinction = [cells](const float* m) {
+    return m && std::any_of(m, m + cells, [](float x) { return x > 0.0f; });
+  };
+  const bool volume_matters = any_extinction(view.majorants) || any_extinction(shadow.majorants);
+  float e = volume_matters ? view.step : kInfinity;
+  e = glm::min(e, meshes_.detail_slab_distance());
+  if (!(e < kInfinity)) e = view.step;
+  return glm::max(e, depth / float(kAutomaticSlabs));
+}
+
 void SlabRenderer::prepare(const Scene& scene, const SlabSettings& settings) {
   resources_.update(scene, scene.material().shading == Shading::Phong);
   meshes_.update(scene);
@@ -121,11 +139,12 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
   const int light_count = int(lights.size());
 
   const float voxel = view.volume.min_spacing();
-  const float e = settings_.slab_distance_voxels > 0.0f ? settings_.slab_distance_voxels * voxel : view.step;
   float z_front = box_depth(box, cam, false);
   float z_back = box_depth(box, cam, true);
   if (!cam.orthographic) z_front = glm::max(z_front, 1e-4f);
   const float box_extent = glm::max(z_back - z_front, 0.0f);
+  const float e = settings_.slab_distance_voxels > 0.0f ? settings_.slab_distance_voxels * voxel
+                                                        : automatic_slab_distance(view, shadow, box_extent);
   const float d1 = settings_.optimal_distance_voxels > 0.0f ? settings_.optimal_distance_voxels * voxel
                                                             : glm::max(0.25f * box_extent, e);
 

@@ -44,7 +44,7 @@
 namespace penumbra {
 
 struct SlabSettings {
-  float slab_distance_voxels = 0.0f;     // 0: the scene's render step
+  float slab_distance_voxels = 0.0f;     // 0: the render step and the meshes' detail (automatic_slab_distance)
   float optimal_distance_voxels = 0.0f;  // 0: a quarter of the box's depth extent
   SlabKernelType kernel = SlabKernelType::Ellipse;
   int kernel_samples = 0;  // 0: the kernel's default
@@ -62,8 +62,10 @@ class SlabRenderer {
   std::uint64_t aux_bytes() const;
   int last_slab_count() const { return last_slabs_; }
   int rebuilds() const { return meshes_.builds(); }
+  static constexpr int kAutomaticSlabs = 4096;  // the most slabs an unset slab_distance gives
 
  private:
+  float automatic_slab_distance(const RenderView& view, const RenderView& shadow, float depth) const;
   SceneResources resources_;
   MeshResources meshes_;
   PreintegrationCache preintegration_;
