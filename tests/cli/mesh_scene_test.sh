@@ -78,6 +78,25 @@ printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n' > "$work/broken.obj"
 expect_error '[{"file": "broken.obj"}]' "broken.obj"
 expect_error '[{"file": "broken.obj"}]' "OBJ line 4"
 
+# --frames: the animated detail (a "time" key) advances by --time-step per
+# frame, frame i in out-000i.png; the first frame is the scene as written.
+scene '[{"builtin": "sphere", "scale": 3, "material": {"detail": {"type": "fbm", "frequency": 4, "time": 0.5},
+        "transfer_function": {"points": [[-1, 1, 1, 1, 0.0], [1, 1, 1, 1, 0.9]]}}}]' > "$work/animated.json"
+rm -f "$work"/seq-*.png
+out=$("$bin" render "$work/animated.json" -o "$work/seq.png" --technique convolution --frames 3 --time-step 0.4 2>"$work/stderr")
+rc=$?
+[ "$rc" -eq 0 ] || fail "--frames 3 exited $rc: $(cat "$work/stderr")"
+for i in 0 1 2; do [ -s "$work/seq-000$i.png" ] || fail "--frames 3 wrote no seq-000$i.png"; done
+[ "$(grep -c 'seq-000' <<<"$out")" -eq 3 ] || fail "--frames 3 did not print the three paths: $out"
+cmp -s "$work/seq-0000.png" "$work/seq-0001.png" && fail "frames 0 and 1 are the same image: the detail did not move"
+run "$work/animated.json" --technique convolution
+cmp -s "$work/out.png" "$work/seq-0000.png" || fail "frame 0 differs from a plain render of the scene"
+# Errors: no animated detail to advance, a frame count out of range.
+run "$work/sphere.json" --technique convolution --frames 2
+[ "$rc" -eq 2 ] && grep -qF -- "--frames" <<<"$err" || fail "--frames without animated detail: rc $rc: $err"
+run "$work/animated.json" --technique convolution --frames 0
+[ "$rc" -eq 2 ] && grep -qF -- "--frames" <<<"$err" || fail "--frames 0: rc $rc: $err"
+
 if [ "$failures" -gt 0 ]; then
   echo "$failures mesh scene check(s) failed"
   exit 1
