@@ -178,6 +178,9 @@ function adopt(scene, volume) {
   $('step').value = scene.render.step;
   const source = scene.volume.file !== undefined ? scene.volume.file : `builtin:${scene.volume.builtin}`;
   $('volume-select').value = source;
+  $('detail-time-row').hidden = animatedMeshes().length === 0;
+  if (animatedMeshes().length === 0) $('animate-detail').checked = false;
+  showDetailTime();
 }
 
 function setVolumeInfo(info) {
@@ -239,6 +242,34 @@ bindRange('time-step', (v) => {
   state.histogramStale = true;
 });
 $('shading').addEventListener('change', () => { state.scene.material.shading = $('shading').value; changed(true); });
+
+// Animated mesh detail (Patel et al. 2013): while "Animate mesh detail" is
+// on, every mesh whose detail has a time advances by DETAIL_TIME_STEP each
+// time the last full frame is shown, the step `penumbra render --frames`
+// takes by default.
+const DETAIL_TIME_STEP = 0.04;
+function animatedMeshes() {
+  return ((state.scene && state.scene.meshes) || []).filter((m) => m.material && m.material.detail &&
+                                                                   m.material.detail.time !== undefined);
+}
+function showDetailTime() {
+  const meshes = animatedMeshes();
+  $('detail-time-value').textContent = meshes.length ? `t = ${meshes[0].material.detail.time.toFixed(2)}` : '';
+}
+let animationTimer = null;
+function animateDetail() {
+  animationTimer = null;
+  if (!$('animate-detail').checked || animatedMeshes().length === 0) return;
+  if (scheduler.idle() && !busy) {
+    for (const m of animatedMeshes()) m.material.detail.time += DETAIL_TIME_STEP;
+    showDetailTime();
+    fullFrames();
+  }
+  animationTimer = setTimeout(animateDetail, 20);
+}
+$('animate-detail').addEventListener('change', () => {
+  if ($('animate-detail').checked && animationTimer === null) animateDetail();
+});
 
 if (![...$('size-select').options].some((o) => o.value === String(state.size))) {
   $('size-select').append(Object.assign(document.createElement('option'), { textContent: String(state.size) }));

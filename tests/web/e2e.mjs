@@ -251,6 +251,37 @@ async function run() {
     check(await page.evaluate(() => window.penumbraViewer.scene().render.technique) === 'cone-shadows', 'the view stays cone-shadows');
     check(await page.isVisible('#reference'), 'the reference canvas is shown');
 
+    // 9. Animated mesh detail: a scene of one mesh whose detail has a time.
+    // The row shows; while it is on the time advances and each step is drawn.
+    await page.uncheck('#reference-toggle');
+    const animated = JSON.stringify({
+      volume: { builtin: 'empty', size: [32, 32, 32] },
+      camera: { eye: [0, -80, 30], target: [0, 0, 0], up: [0, 0, 1], fov_deg: 30 },
+      lights: [{ type: 'directional', direction: [0.3, 0.5, -0.8] }],
+      material: { ambient: 0.2 },
+      meshes: [{ builtin: 'sphere', scale: 12, material: { detail: { type: 'fbm', frequency: 2, time: 0 },
+        transfer_function: { points: [[-1, 0.1, 0.1, 0.1, 0.0], [0.2, 0.5, 0.3, 0.2, 0.05], [1, 1, 1, 1, 0.9]],
+                             range: 'data' } } }],
+      render: { technique: 'convolution' },
+    });
+    await page.setInputFiles('#load-scene', { name: 'mesh.json', mimeType: 'application/json', buffer: Buffer.from(animated) });
+    await settled(page, 'animated mesh scene');
+    check(await page.isVisible('#detail-time-row'), 'the animate-detail row shows for a scene with animated detail');
+    const still = await canvasPixels(page);
+    const animationStart = await page.evaluate(() => window.penumbraViewer.fullFrames);
+    await page.check('#animate-detail');
+    await page.waitForFunction(() => window.penumbraViewer.scene().meshes[0].material.detail.time >= 0.199, null,
+                               { timeout: 30000 });
+    await page.uncheck('#animate-detail');
+    await settled(page, 'animation stopped');
+    const animation = await page.evaluate(() => ({ time: window.penumbraViewer.scene().meshes[0].material.detail.time,
+                                                   frames: window.penumbraViewer.fullFrames }));
+    check(animation.frames - animationStart >= 5, `a frame per detail step (${animation.frames - animationStart} frames to t = ${animation.time.toFixed(2)})`);
+    check((await page.textContent('#detail-time-value')) === `t = ${animation.time.toFixed(2)}`, 'the time read-out follows');
+    const animatedPixels = await canvasPixels(page);
+    check(difference(still, animatedPixels) > 0.3,
+          `the detail moved in the view (mean change ${difference(still, animatedPixels).toFixed(2)} codes)`);
+
     const frameTime = await page.textContent('#frame-time');
     check(/render [\d.]+ ms/.test(frameTime), `frame-time read-out: ${frameTime}`);
     check(await page.evaluate(() => window.penumbraViewer.errors) === 0, 'no error banner');
