@@ -74,15 +74,36 @@ DetailFunction read_detail(const json& j, const std::string& section, const std:
 
 MeshMaterial read_material(const json& j, const std::string& section, const std::filesystem::path& base_dir,
                            const SceneParseOptions& options) {
-  const ObjectReader r(j, section, {"detail", "transfer_function", "specular", "roughness"});
+  const ObjectReader r(j, section, {"detail", "transfer_function", "color_detail", "color_transfer_function",
+                                    "specular", "roughness"});
   MeshMaterial m;
   if (r.has("detail")) m.detail = read_detail(r.at("detail"), r.key("detail"), base_dir, options);
   if (r.has("transfer_function")) {
     m.tf = read_transfer_function(r.at("transfer_function"), r.key("transfer_function"), base_dir, options);
   }
+  if (r.has("color_detail")) {
+    m.has_color_detail = true;
+    m.color_detail = read_detail(r.at("color_detail"), r.key("color_detail"), base_dir, options);
+  }
+  if (r.has("color_transfer_function")) {
+    if (!m.has_color_detail) {
+      throw InvalidScene(r.key("color_transfer_function"), "needs a color_detail whose values it colours");
+    }
+    m.color_tf = read_transfer_function(r.at("color_transfer_function"), r.key("color_transfer_function"), base_dir,
+                                        options);
+  }
   m.specular = r.number("specular", m.specular);
   m.roughness = r.number("roughness", m.roughness);
   return m;
+}
+
+json detail_to_json(const DetailFunction& d) {
+  json dj{{"type", detail_name(d.type)}, {"frequency", d.frequency},  {"octaves", d.fractal.octaves},
+          {"lacunarity", d.fractal.lacunarity}, {"gain", d.fractal.gain}, {"offset", d.fractal.offset},
+          {"value", d.value}, {"seed", d.seed}};
+  if (d.time_dependent) dj["time"] = d.fractal.time;
+  if (d.type == DetailType::Texture) dj["texture"] = d.texture_file;
+  return dj;
 }
 
 }  // namespace
@@ -134,16 +155,14 @@ json meshes_to_json(const std::vector<MeshObject>& meshes) {
     mj["scale"] = to_json(m.scale);
     mj["rotate_deg"] = to_json(m.rotate_deg);
     mj["translate"] = to_json(m.translate);
-    const DetailFunction& d = m.material.detail;
-    json dj{{"type", detail_name(d.type)}, {"frequency", d.frequency},  {"octaves", d.fractal.octaves},
-            {"lacunarity", d.fractal.lacunarity}, {"gain", d.fractal.gain}, {"offset", d.fractal.offset},
-            {"value", d.value}, {"seed", d.seed}};
-    if (d.time_dependent) dj["time"] = d.fractal.time;
-    if (d.type == DetailType::Texture) dj["texture"] = d.texture_file;
-    mj["material"] = {{"detail", dj},
+    mj["material"] = {{"detail", detail_to_json(m.material.detail)},
                       {"transfer_function", to_json(m.material.tf)},
                       {"specular", m.material.specular},
                       {"roughness", m.material.roughness}};
+    if (m.material.has_color_detail) {
+      mj["material"]["color_detail"] = detail_to_json(m.material.color_detail);
+      mj["material"]["color_transfer_function"] = to_json(m.material.color_tf);
+    }
     out.push_back(mj);
   }
   return out;

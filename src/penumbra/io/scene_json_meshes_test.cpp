@@ -28,6 +28,8 @@ TEST(SceneJsonMeshes, ReadsEveryKeyAndWritesThemBack) {
      "material": {"detail": {"type": "ridged", "frequency": 2.5, "octaves": 3, "lacunarity": 2.2, "gain": 0.4,
                              "offset": 0.9, "time": 1.5, "seed": 7},
                   "transfer_function": {"points": [[0, 1, 0, 0, 0.1], [1, 0, 1, 0, 0.5]], "range": [0, 2]},
+                  "color_detail": {"type": "noise", "frequency": 4},
+                  "color_transfer_function": {"points": [[0, 1, 0, 0, 0], [1, 0, 0, 1, 0]]},
                   "specular": 0.5, "roughness": 0.2}},
     {"builtin": "box"}])"),
                                   std::filesystem::temp_directory_path());
@@ -51,7 +53,12 @@ TEST(SceneJsonMeshes, ReadsEveryKeyAndWritesThemBack) {
   EXPECT_EQ(m.material.tf.points().size(), 2u);
   EXPECT_FLOAT_EQ(m.material.specular, 0.5f);
   EXPECT_FLOAT_EQ(m.material.roughness, 0.2f);
+  EXPECT_TRUE(m.material.has_color_detail);
+  EXPECT_EQ(m.material.color_detail.type, DetailType::Noise);
+  EXPECT_FLOAT_EQ(m.material.color_detail.frequency, 4.0f);
+  EXPECT_EQ(m.material.color_tf.points().size(), 2u);
   EXPECT_FALSE(scene.meshes()[1].material.detail.time_dependent);
+  EXPECT_FALSE(scene.meshes()[1].material.has_color_detail);
   // The camera frames the meshes too: the torus (radius 1 x 4) reaches past the 8^3 box.
   EXPECT_GT(glm::length(scene.camera().eye - scene.camera().target), 10.0f);
 
@@ -81,6 +88,10 @@ TEST(SceneJsonMeshes, NamesTheKeyAtFault) {
   EXPECT_EQ(mesh_error_key(R"({"builtin": "sphere"})"), "meshes");
   EXPECT_EQ(mesh_error_key(R"([{"builtin": "sphere", "colour": 1}])"), "meshes[0].colour");
   EXPECT_EQ(mesh_error_key(R"([{}])"), "meshes[0]");
+  EXPECT_EQ(mesh_error_key(R"([{"builtin": "sphere", "material": {"color_transfer_function": {"points": []}}}])"),
+            "meshes[0].material.color_transfer_function");
+  EXPECT_EQ(mesh_error_key(R"([{"builtin": "sphere", "material": {"color_detail": {"type": "plaid"}}}])"),
+            "meshes[0].material.color_detail.type");
   EXPECT_EQ(mesh_error_key(R"([{"builtin": "sphere", "file": "a.obj"}])"), "meshes[0]");
   EXPECT_EQ(mesh_error_key(R"([{"builtin": "teapot"}])"), "meshes[0].builtin");
   EXPECT_EQ(mesh_error_key(R"([{"builtin": "sphere", "resolution": 99}])"), "meshes[0].resolution");

@@ -62,6 +62,12 @@ struct MeshMaterial {
   // Detail value -> (colour, opacity per unit_length). Its range is in detail
   // units (default [-1, 1]; "data" means the texture's value range).
   TransferFunction tf;
+  // Optional: the colour from a second detail function (Patel et al. 2013,
+  // Fig. 9: a 3D texture for colour, a procedural function for opacity),
+  // through color_tf's colours; the opacity stays detail's through tf.
+  bool has_color_detail = false;
+  DetailFunction color_detail;
+  TransferFunction color_tf;
   float specular = 0.04f;  // Fresnel reflectance at normal incidence (Schlick); 0 = no highlight
   float roughness = 0.3f;  // GGX alpha, in (0, 1]
 };

@@ -24,10 +24,9 @@ vec2 natural_range(const DetailFunction& d) {
 // mesh's object-space bounds; +inf for constant detail. Along each object
 // axis the world length is the axis's column of object_to_world; the
 // smallest axis counts.
-float detail_sampling_distance(const MeshObject& m) {
+float detail_sampling_distance(const MeshObject& m, const DetailFunction& d) {
   const mat3 to_world(m.object_to_world());
   const vec3 axis_scale(glm::length(to_world[0]), glm::length(to_world[1]), glm::length(to_world[2]));
-  const DetailFunction& d = m.material.detail;
   vec3 feature(kInfinity);  // object-space size of the finest feature per axis
   switch (d.type) {
     case DetailType::Constant: return kInfinity;
@@ -67,12 +66,17 @@ void MeshResources::update(const Scene& scene) {
   corner_normals_.assign(meshes.size(), {});
   details_.clear();
   tfs_.clear();
+  color_details_.clear();
+  color_tfs_.clear();
   objects_.clear();
   bounds_ = Box3{vec3(kInfinity), vec3(-kInfinity)};
   detail_distance_ = kInfinity;
   for (std::size_t i = 0; i < meshes.size(); ++i) {
     const MeshObject& m = meshes[i];
-    detail_distance_ = glm::min(detail_distance_, detail_sampling_distance(m));
+    detail_distance_ = glm::min(detail_distance_, detail_sampling_distance(m, m.material.detail));
+    if (m.material.has_color_detail) {
+      detail_distance_ = glm::min(detail_distance_, detail_sampling_distance(m, m.material.color_detail));
+    }
     const mat4 to_world = m.object_to_world();
     TriangleMesh& w = world_[i];
     w.triangles = m.mesh->triangles;
@@ -94,11 +98,24 @@ void MeshResources::update(const Scene& scene) {
     details_.push_back(std::make_unique<DetailResources>(mat.detail, m.mesh->bounds()));
     const float tf_unit = mat.tf.unit_length().value_or(unit);
     tfs_.emplace_back(mat.tf, mat.tf.resolve_range(natural_range(mat.detail)), tf_unit);
+    if (mat.has_color_detail) {
+      color_details_.push_back(std::make_unique<DetailResources>(mat.color_detail, m.mesh->bounds()));
+      color_tfs_.push_back(std::make_unique<TransferFunctionTable>(
+          mat.color_tf, mat.color_tf.resolve_range(natural_range(mat.color_detail)), tf_unit));
+    } else {
+      color_details_.push_back(nullptr);
+      color_tfs_.push_back(nullptr);
+    }
   }
   for (std::size_t i = 0; i < meshes.size(); ++i) {
     MeshMaterialView v;
     v.detail = details_[i]->view();
     v.tf = tfs_[i].view();
+    if (color_details_[i]) {
+      v.colored = true;
+      v.color_detail = color_details_[i]->view();
+      v.color_tf = color_tfs_[i]->view();
+    }
     v.world_to_object = glm::inverse(meshes[i].object_to_world());
     v.specular = meshes[i].material.specular;
     v.roughness = meshes[i].material.roughness;

@@ -19,10 +19,25 @@ namespace penumbra {
 struct MeshMaterialView {
   DetailView detail;         // of object-space positions
   TransferFunctionView tf;   // detail value -> (rgb, sigma_t per world unit)
+  bool colored = false;      // the colour comes from color_detail through color_tf instead
+  DetailView color_detail;
+  TransferFunctionView color_tf;
   mat4 world_to_object{1.0f};
   float specular = 0.0f;     // F0
   float roughness = 0.3f;    // GGX alpha
   float sigma_max = 0.0f;    // the TF's largest extinction: a majorant of the medium
+
+  // The medium at a world point: (rgb, sigma_t per world unit), what
+  // convolution's slabs and the path tracer's mesh media both sample.
+  PENUMBRA_HD vec4 medium(vec3 world) const {
+    const vec3 object(world_to_object * vec4(world, 1.0f));
+    vec4 c = tf.lookup(detail(object));
+    if (colored) {
+      const vec4 colour = color_tf.lookup(color_detail(object));
+      c = vec4(vec3(colour), c.a);
+    }
+    return c;
+  }
 };
 
 struct MeshesView {
@@ -63,6 +78,8 @@ class MeshResources {
   std::vector<std::vector<vec3>> corner_normals_;  // per world mesh: smooth shading normals for the LDI
   std::vector<std::unique_ptr<DetailResources>> details_;
   std::vector<TransferFunctionTable> tfs_;
+  std::vector<std::unique_ptr<DetailResources>> color_details_;  // null where a mesh has no colour detail
+  std::vector<std::unique_ptr<TransferFunctionTable>> color_tfs_;
   std::vector<MeshMaterialView> objects_;
   Box3 bounds_{vec3(kInfinity), vec3(-kInfinity)};
   float detail_distance_ = kInfinity;

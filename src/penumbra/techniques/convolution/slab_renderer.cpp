@@ -59,9 +59,7 @@ PENUMBRA_HD inline vec4 mesh_medium(const MeshesView& meshes, std::uint32_t obje
   float sigma = 0.0f;
   for (int m = 0; m < meshes.count; ++m) {
     if (!(objects & (1u << m))) continue;
-    const MeshMaterialView& mat = meshes.objects[m];
-    const vec3 object(mat.world_to_object * vec4(world, 1.0f));
-    const vec4 c = mat.tf.lookup(mat.detail(object));
+    const vec4 c = meshes.objects[m].medium(world);
     weighted += c.a * vec3(c);
     sigma += c.a;
   }

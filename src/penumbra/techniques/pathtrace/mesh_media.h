@@ -48,12 +48,6 @@ PENUMBRA_HD void for_each_inside_part(const MeshesView& meshes, int m, const Ray
   }
 }
 
-// The medium of mesh m at a world point: (rgb, sigma_t per world unit).
-PENUMBRA_HD inline vec4 mesh_medium_at(const MeshMaterialView& mat, vec3 world) {
-  const vec3 object(mat.world_to_object * vec4(world, 1.0f));
-  return mat.tf.lookup(mat.detail(object));
-}
-
 // Delta tracking through every mesh over [0, t_max]: true and the nearest
 // real collision in `hit` (which keeps the caller's if none is nearer).
 PENUMBRA_HD inline bool mesh_delta_tracking(const MeshesView& meshes, const Ray& ray, float t_max, Pcg32& rng,
@@ -69,7 +63,7 @@ PENUMBRA_HD inline bool mesh_delta_tracking(const MeshesView& meshes, const Ray&
         t += exponential_step(rng, majorant);
         if (t >= b) return true;
         ++lookups;
-        const vec4 medium = mesh_medium_at(mat, ray.at(t));
+        const vec4 medium = mat.medium(ray.at(t));
         if (rng.next_float() * majorant < medium.a) {
           hit = Collision{t, vec3(medium), medium.a};
           collided = true;
@@ -94,7 +88,7 @@ PENUMBRA_HD inline float mesh_ratio_tracking(const MeshesView& meshes, const Ray
         t += exponential_step(rng, majorant);
         if (t >= b) return true;
         ++lookups;
-        transmittance *= glm::max(0.0f, 1.0f - mesh_medium_at(mat, ray.at(t)).a / majorant);
+        transmittance *= glm::max(0.0f, 1.0f - mat.medium(ray.at(t)).a / majorant);
         if (transmittance < kRatioRouletteThreshold) {
           if (rng.next_float() * kRatioRouletteThreshold >= transmittance) {
             transmittance = 0.0f;
