@@ -96,15 +96,26 @@ TransferFunction step_tf(float lo, vec3 color, float alpha) {
   return tf;
 }
 
-Image render_with(const Scene& scene, const std::string& technique, const ParameterSettings& params) {
+Image render_with(const Scene& scene, const std::string& technique, const ParameterSettings& params,
+                  RenderStats* stats) {
   const TechniqueInfo& info = find_technique(technique);
   ParameterValues values(info.parameters);
   values.apply(params, true);
   auto t = info.create();
   t->prepare(scene, values);
   Image image;
-  t->render(scene, image);
+  t->render(scene, image, stats);
   return image;
+}
+
+Camera orthographic_camera(vec3 eye, float height, vec3 up) {
+  Camera cam;
+  cam.projection = Projection::Orthographic;
+  cam.eye = eye;
+  cam.target = vec3(0.0f);
+  cam.up = up;
+  cam.ortho_height = height;
+  return cam;
 }
 
 vec3 mean_rgb(const Image& image, int x0, int y0, int x1, int y1) {

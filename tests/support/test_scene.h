@@ -2,6 +2,7 @@
 // Small scenes for tests: a procedural volume, an explicit TF range and a
 // camera framing the box, rendered at a small size.
 #include "penumbra/render/image.h"
+#include "penumbra/render/render_loop.h"
 #include "penumbra/scene/scene.h"
 #include "penumbra/volume/procedural.h"
 
@@ -43,8 +44,13 @@ std::filesystem::path shared_data_dir();
 
 Scene repository_scene(const std::string& relative_path, int image_size);
 
-// Renders with a registered technique and parameters (name=value pairs).
-Image render_with(const Scene& scene, const std::string& technique, const ParameterSettings& params = {});
+// Renders with a registered technique and parameters (name=value pairs);
+// the render's statistics into `stats` when given.
+Image render_with(const Scene& scene, const std::string& technique, const ParameterSettings& params = {},
+                  RenderStats* stats = nullptr);
+
+// An orthographic camera at `eye` looking at the origin, `height` world units tall.
+Camera orthographic_camera(vec3 eye, float height, vec3 up = vec3(0.0f, 1.0f, 0.0f));
 
 // Mean of an image's rgb over a pixel rectangle [x0, x1) x [y0, y1).
 vec3 mean_rgb(const Image& image, int x0, int y0, int x1, int y1);

@@ -23,13 +23,7 @@ Scene two_function_box(bool colored, bool lit) {
   Scene scene = procedural_scene("empty", ivec3(32), 32);
   TransferFunction clear({{0.0f, vec3(1.0f), 0.0f}, {1.0f, vec3(1.0f), 0.0f}});
   scene.set_transfer_function(clear);
-  Camera cam;
-  cam.projection = Projection::Orthographic;
-  cam.eye = vec3(0.0f, 0.0f, 100.0f);
-  cam.target = vec3(0.0f);
-  cam.up = vec3(0.0f, 1.0f, 0.0f);
-  cam.ortho_height = 32.0f;
-  scene.set_camera(cam);
+  scene.set_camera(testing::orthographic_camera(vec3(0.0f, 0.0f, 100.0f), 32.0f));
   if (lit) {
     scene.set_lights({testing::directional_light(vec3(0.0f, 0.0f, -1.0f))});
   } else {

@@ -27,13 +27,7 @@ Scene detail_sphere_scene(DetailFunction detail, bool volume_has_medium) {
   RenderSettings render = scene.render();
   render.step = 1.0f;
   scene.set_render(render);
-  Camera cam;
-  cam.projection = Projection::Orthographic;
-  cam.eye = vec3(0.0f, 0.0f, 100.0f);
-  cam.target = vec3(0.0f);
-  cam.up = vec3(0.0f, 1.0f, 0.0f);
-  cam.ortho_height = 32.0f;
-  scene.set_camera(cam);
+  scene.set_camera(testing::orthographic_camera(vec3(0.0f, 0.0f, 100.0f), 32.0f));
   MeshObject m;
   m.source.builtin = "sphere";
   m.mesh = make_builtin_mesh("sphere", 2);
@@ -45,14 +39,8 @@ Scene detail_sphere_scene(DetailFunction detail, bool volume_has_medium) {
 }
 
 int slab_count(const Scene& scene, const ParameterSettings& params = {}) {
-  const TechniqueInfo& info = find_technique("convolution");
-  ParameterValues values(info.parameters);
-  values.apply(params, true);
-  auto t = info.create();
-  t->prepare(scene, values);
-  Image image;
   RenderStats stats;
-  t->render(scene, image, &stats);
+  testing::render_with(scene, "convolution", params, &stats);
   return int(stats.passes);
 }
 

@@ -24,13 +24,7 @@ Scene cut_detail_scene(int image) {
   Scene scene = procedural_scene("marschner-lobb", ivec3(64), image);
   scene.set_transfer_function(TransferFunction(
       {{0.0f, vec3(0.2f, 0.3f, 0.8f), 0.0f}, {0.5f, vec3(0.8f), 0.1f}, {1.0f, vec3(1.0f, 0.7f, 0.4f), 0.6f}}));
-  Camera cam;
-  cam.projection = Projection::Orthographic;
-  cam.eye = vec3(120.0f, -60.0f, 50.0f);
-  cam.target = vec3(0.0f);
-  cam.up = vec3(0.0f, 0.0f, 1.0f);
-  cam.ortho_height = 80.0f;
-  scene.set_camera(cam);
+  scene.set_camera(testing::orthographic_camera(vec3(120.0f, -60.0f, 50.0f), 80.0f, vec3(0.0f, 0.0f, 1.0f)));
   scene.set_lights({testing::directional_light(glm::normalize(vec3(-0.3f, 0.8f, -0.5f)))});
   Material m;
   m.shading = Shading::Phase;

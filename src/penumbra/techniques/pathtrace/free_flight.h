@@ -65,6 +65,21 @@ PENUMBRA_HD bool delta_tracking(const RenderView& v, const Sampler& sampler, con
 // which keeps the estimate unbiased and ends rays deep in shadow early.
 inline constexpr float kRatioRouletteThreshold = 0.1f;
 
+// One tentative collision of ratio tracking: the running estimate times the
+// null-collision ratio 1 - sigma / majorant, then the roulette; false when
+// the estimate is 0 (the ray is done).
+PENUMBRA_HD inline bool ratio_tracking_step(float& transmittance, float sigma, float majorant, Pcg32& rng) {
+  transmittance *= glm::max(0.0f, 1.0f - sigma / majorant);
+  if (transmittance < kRatioRouletteThreshold) {
+    if (rng.next_float() * kRatioRouletteThreshold >= transmittance) {
+      transmittance = 0.0f;
+      return false;
+    }
+    transmittance = kRatioRouletteThreshold;
+  }
+  return true;
+}
+
 // Ratio-tracking estimate of exp(-integral sigma_t) from ray.origin to t_max
 // (a light's distance or +inf), within the volume box and clip planes.
 template <class Sampler>
@@ -84,14 +99,7 @@ PENUMBRA_HD float ratio_tracking(const RenderView& v, const Sampler& sampler, co
       ++lookups;
       const float value = sampler(o + t * d);
       const float sigma = (Sampler::kAlwaysFinite ? tf.lookup_finite(value) : tf.lookup(value)).a;
-      transmittance *= glm::max(0.0f, 1.0f - sigma / majorant);
-      if (transmittance < kRatioRouletteThreshold) {
-        if (rng.next_float() * kRatioRouletteThreshold >= transmittance) {
-          transmittance = 0.0f;
-          return false;
-        }
-        transmittance = kRatioRouletteThreshold;
-      }
+      if (!ratio_tracking_step(transmittance, sigma, majorant, rng)) return false;
     }
   });
   return transmittance;

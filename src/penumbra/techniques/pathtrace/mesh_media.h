@@ -88,14 +88,7 @@ PENUMBRA_HD inline float mesh_ratio_tracking(const MeshesView& meshes, const Ray
         t += exponential_step(rng, majorant);
         if (t >= b) return true;
         ++lookups;
-        transmittance *= glm::max(0.0f, 1.0f - mat.medium(ray.at(t)).a / majorant);
-        if (transmittance < kRatioRouletteThreshold) {
-          if (rng.next_float() * kRatioRouletteThreshold >= transmittance) {
-            transmittance = 0.0f;
-            return false;
-          }
-          transmittance = kRatioRouletteThreshold;
-        }
+        if (!ratio_tracking_step(transmittance, mat.medium(ray.at(t)).a, majorant, rng)) return false;
       }
     });
   }
