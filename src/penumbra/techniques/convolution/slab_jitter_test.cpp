@@ -1,12 +1,14 @@
 // convolution's per-pixel jitter within slabs (issue 23): the `jitter`
 // parameter and the scene's render.jitter, the moire it removes from a cut
 // face of fine detail, and the exact integration it keeps.
+#include "penumbra/scene/mesh_shapes.h"
 #include "penumbra/techniques/registry.h"
 #include "test_scene.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 namespace penumbra {
@@ -81,6 +83,91 @@ TEST(ConvolutionJitter, TradesCutFaceBandsForNoise) {
     EXPECT_GT(without, 0.01) << "e " << e << ": the fixed slabs must show bands for the test to mean anything";
     EXPECT_LT(with, 0.9 * without) << "e " << e;
   }
+}
+
+// A homogeneous mesh sphere (radius 22, sigma about 0.5 per unit) at the
+// centre of an orthographic view from +z, 96^2 over 60 units, lit by a
+// directional light `tilt` off the view axis (0: along it).
+Scene ring_sphere_scene(vec3 light_direction) {
+  Scene scene = procedural_scene("empty", ivec3(64), 96);
+  scene.set_transfer_function(TransferFunction({{0.0f, vec3(1.0f), 0.0f}, {1.0f, vec3(1.0f), 0.0f}}));
+  scene.set_camera(testing::orthographic_camera(vec3(0.0f, 0.0f, 100.0f), 60.0f));
+  scene.set_lights({testing::directional_light(glm::normalize(light_direction))});
+  Material m;
+  m.shading = Shading::Phase;
+  m.ambient = 0.1f;
+  scene.set_material(m);
+  MeshObject sphere;
+  sphere.source.builtin = "sphere";
+  sphere.mesh = make_builtin_mesh("sphere", 4);
+  sphere.scale = vec3(22.0f);
+  sphere.material.detail.type = DetailType::Constant;
+  TransferFunction medium({{0.0f, vec3(0.9f, 0.8f, 0.7f), 0.4f}, {1.0f, vec3(0.9f, 0.8f, 0.7f), 0.4f}});
+  medium.set_unit_length(1.0f);
+  sphere.material.tf = medium;
+  sphere.material.specular = 0.0f;
+  scene.set_meshes({sphere});
+  return scene;
+}
+
+// Ring energy of `image` against `reference` about the image centre: the RMS
+// of the grey error's mean over one-pixel annuli, less a 9-annulus moving
+// average of that profile (scripts/convolution-rings.py). Rings concentric
+// about the centre keep their amplitude; noise averages out over an annulus.
+double ring_energy(const Image& image, const Image& reference, double radius) {
+  const int w = image.width(), h = image.height();
+  const int bins = int(radius) + 1;
+  std::vector<double> sum(std::size_t(bins), 0.0), count(std::size_t(bins), 0.0);
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      const double r = std::hypot(x + 0.5 - 0.5 * w, y + 0.5 - 0.5 * h);
+      if (r >= radius) continue;
+      const vec4 d = image.at(x, y) - reference.at(x, y);
+      sum[std::size_t(r)] += (d.x + d.y + d.z) / 3.0;
+      count[std::size_t(r)] += 1.0;
+    }
+  }
+  std::vector<double> profile;
+  for (int b = 0; b < bins; ++b) {
+    if (count[std::size_t(b)] > 0.0) profile.push_back(sum[std::size_t(b)] / count[std::size_t(b)]);
+  }
+  const int n = int(profile.size());
+  double energy = 0.0;
+  for (int i = 0; i < n; ++i) {
+    double smooth = 0.0;
+    for (int k = -4; k <= 4; ++k) smooth += profile[std::size_t(glm::clamp(i + k, 0, n - 1))] / 9.0;
+    energy += (profile[std::size_t(i)] - smooth) * (profile[std::size_t(i)] - smooth);
+  }
+  return std::sqrt(energy / n);
+}
+
+// The slab rings on a mesh sphere (issue 23), measured and pinned: they come
+// from the light's sideways transport between slabs where the surface is
+// steep to them, not from where samples sit (docs/convolution.md). Lit along
+// the view axis they vanish; with a tilted light they shrink with the slab
+// distance, and jitter leaves them as they are. Measured (96^2, against e =
+// 0.25): tilted 11.7e-3 at e = 2 and 3.45e-3 at e = 1, jittered 11.7e-3;
+// along the axis 0.11e-3 at e = 2. The last bound pins today's size (1.25x):
+// a fix will tighten it.
+TEST(ConvolutionJitter, MeshSphereRingsComeFromTheSidewaysLight) {
+  const double radius = 0.98 * 22.0 / 60.0 * 96.0;
+  const Scene tilted = ring_sphere_scene(vec3(0.5f, 0.4f, -0.77f)), along = ring_sphere_scene(vec3(0.0f, 0.0f, -1.0f));
+  const ParameterSettings fine_slabs{{"slab_distance", 0.25}, {"jitter", std::string("off")}};
+  const Image tilted_reference = render_with(tilted, "convolution", fine_slabs);
+  const Image along_reference = render_with(along, "convolution", fine_slabs);
+  const auto rings = [&](const Scene& scene, const Image& reference, double e, const char* jitter) {
+    const Image image = render_with(scene, "convolution", {{"slab_distance", e}, {"jitter", std::string(jitter)}});
+    return ring_energy(image, reference, radius);
+  };
+  const double coarse = rings(tilted, tilted_reference, 2.0, "off"), fine = rings(tilted, tilted_reference, 1.0, "off");
+  const double jittered = rings(tilted, tilted_reference, 2.0, "on");
+  const double axial = rings(along, along_reference, 2.0, "off");
+  std::printf("mesh sphere ring energy: tilted e 2 %.2e, e 1 %.2e, jittered %.2e; along the axis %.2e\n", coarse, fine,
+              jittered, axial);
+  EXPECT_LT(axial, 0.1 * coarse);
+  EXPECT_LT(fine, 0.7 * coarse);
+  EXPECT_NEAR(jittered, coarse, 0.2 * coarse);
+  EXPECT_LT(coarse, 1.25 * 11.7e-3);
 }
 
 // `jitter=scene` (the default) follows the scene's render.jitter; the
