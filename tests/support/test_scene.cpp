@@ -4,6 +4,7 @@
 #include "penumbra/io/image_io.h"
 #include "penumbra/io/scene_json.h"
 #include "penumbra/render/parameters.h"
+#include "penumbra/scene/mesh_shapes.h"
 #include "penumbra/techniques/registry.h"
 
 #include <cstdlib>
@@ -106,6 +107,20 @@ Image render_with(const Scene& scene, const std::string& technique, const Parame
   Image image;
   t->render(scene, image, stats);
   return image;
+}
+
+MeshObject homogeneous_mesh(const std::string& builtin, int resolution, float scale, vec3 color, float alpha) {
+  MeshObject m;
+  m.source.builtin = builtin;
+  m.source.resolution = resolution;
+  m.mesh = make_builtin_mesh(builtin, resolution);
+  m.scale = vec3(scale);
+  m.material.detail.type = DetailType::Constant;
+  TransferFunction medium({{0.0f, color, alpha}, {1.0f, color, alpha}});
+  medium.set_unit_length(1.0f);
+  m.material.tf = medium;
+  m.material.specular = 0.0f;
+  return m;
 }
 
 Camera orthographic_camera(vec3 eye, float height, vec3 up) {

@@ -49,6 +49,11 @@ Scene repository_scene(const std::string& relative_path, int image_size);
 Image render_with(const Scene& scene, const std::string& technique, const ParameterSettings& params = {},
                   RenderStats* stats = nullptr);
 
+// A built-in mesh scaled by `scale`, filled with a homogeneous medium:
+// constant detail through a TF of `color` and `alpha` per world unit, no
+// highlight.
+MeshObject homogeneous_mesh(const std::string& builtin, int resolution, float scale, vec3 color, float alpha);
+
 // An orthographic camera at `eye` looking at the origin, `height` world units tall.
 Camera orthographic_camera(vec3 eye, float height, vec3 up = vec3(0.0f, 1.0f, 0.0f));
 

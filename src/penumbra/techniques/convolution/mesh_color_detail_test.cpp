@@ -32,15 +32,7 @@ Scene two_function_box(bool colored, bool lit) {
   Material mat;
   mat.ambient = lit ? 0.0f : 1.0f;
   scene.set_material(mat);
-  MeshObject m;
-  m.source.builtin = "box";
-  m.mesh = make_builtin_mesh("box", 1);
-  m.scale = vec3(12.0f);
-  m.material.detail.type = DetailType::Constant;
-  TransferFunction opacity({{0.0f, vec3(1.0f), 0.2f}, {1.0f, vec3(1.0f), 0.2f}});
-  opacity.set_unit_length(1.0f);
-  m.material.tf = opacity;
-  m.material.specular = 0.0f;
+  MeshObject m = testing::homogeneous_mesh("box", 1, 12.0f, vec3(1.0f), 0.2f);
   if (colored) {
     auto texture = std::make_shared<Volume>(ivec3(2, 1, 1), VoxelType::Float32);
     texture->frame_as<float>(0)[0] = 0.0f;

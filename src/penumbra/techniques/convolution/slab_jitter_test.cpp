@@ -97,16 +97,7 @@ Scene ring_sphere_scene(vec3 light_direction) {
   m.shading = Shading::Phase;
   m.ambient = 0.1f;
   scene.set_material(m);
-  MeshObject sphere;
-  sphere.source.builtin = "sphere";
-  sphere.mesh = make_builtin_mesh("sphere", 4);
-  sphere.scale = vec3(22.0f);
-  sphere.material.detail.type = DetailType::Constant;
-  TransferFunction medium({{0.0f, vec3(0.9f, 0.8f, 0.7f), 0.4f}, {1.0f, vec3(0.9f, 0.8f, 0.7f), 0.4f}});
-  medium.set_unit_length(1.0f);
-  sphere.material.tf = medium;
-  sphere.material.specular = 0.0f;
-  scene.set_meshes({sphere});
+  scene.set_meshes({testing::homogeneous_mesh("sphere", 4, 22.0f, vec3(0.9f, 0.8f, 0.7f), 0.4f)});
   return scene;
 }
 
