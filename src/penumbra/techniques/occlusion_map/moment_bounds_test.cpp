@@ -193,6 +193,60 @@ TEST(MomentPyramid, LevelRegionsDoubleTheirWidth) {
   }
 }
 
+// The maximum a view reads for a point is at least the largest u in the box
+// of half-width kMaximumRadiusSigmas sigma around it (brute force over the
+// voxels), at every level and at fractional ones, on a sparse random volume
+// with anisotropic spacing; and not the largest of a much bigger box (it
+// stays local: zero where nothing lies within 3 sigma + 2 node spacings).
+TEST(MomentPyramid, MaximaCoverEveryRegionAndStayLocal) {
+  const ivec3 dims(41, 23, 17);
+  Volume volume(dims, VoxelType::Float32);
+  volume.set_spacing(vec3(1.0f, 0.7f, 1.3f));
+  float* voxels = volume.frame_as<float>(0);
+  Pcg32 rng(11);
+  for (std::int64_t i = 0; i < std::int64_t(volume.voxel_count()); ++i) {  // isolated voxels in the first 8 x slices
+    voxels[i] = rng.next_float() < (i % dims.x < 8 ? 0.01f : 0.0f) ? 0.1f + 0.9f * rng.next_float() : 0.0f;
+  }
+  const MomentPyramid pyramid(volume.view(), vec2(0.0f, 1.0f), MomentPyramidSettings{});
+  const MomentPyramidView<2> view = pyramid.view<2>();
+  const VolumeView v = volume.view();
+  auto largest_within = [&](vec3 c, vec3 half) {
+    float best = 0.0f;
+    for (int z = 0; z < dims.z; ++z) {
+      for (int y = 0; y < dims.y; ++y) {
+        for (int x = 0; x < dims.x; ++x) {
+          const vec3 d = glm::abs(v.world_from_index(vec3(float(x), float(y), float(z))) - c);
+          if (d.x <= half.x && d.y <= half.y && d.z <= half.z) {
+            best = std::max(best, voxels[(std::int64_t(z) * dims.y + y) * dims.x + x]);
+          }
+        }
+      }
+    }
+    return best;
+  };
+  const Box3 box = volume.world_box();
+  int local = 0, checked = 0;
+  for (int n = 0; n < 2000; ++n) {
+    // Every other point near the voxels, where a box too small would miss them.
+    const float x = n % 2 == 0 ? 0.3f * rng.next_float() : rng.next_float();
+    const vec3 c = box.lower + vec3(x, rng.next_float(), rng.next_float()) * (box.upper - box.lower);
+    const float level = float(n % 4) + (n % 3 == 0 ? 0.5f : 0.0f);
+    const float sigma = view.sigma(glm::ceil(level));
+    const float read = view.maximum(level, c);
+    ASSERT_GE(read, largest_within(c, vec3(kMaximumRadiusSigmas * view.sigma(level)))) << n;
+    const int k = int(glm::ceil(level));
+    vec3 spacing;
+    for (int a = 0; a < 3; ++a) spacing[a] = 1.0f / view.levels[k].scale[a];
+    if (largest_within(c, vec3(3.0f * sigma) + 2.0f * spacing) == 0.0f) {
+      ++local;
+      EXPECT_EQ(read, 0.0f) << n;
+    }
+    ++checked;
+  }
+  EXPECT_GT(local, 20);  // the second check ran
+  EXPECT_EQ(checked, 2000);
+}
+
 TEST(MomentPyramid, BadSettingsNameTheParameter) {
   Volume volume(ivec3(8), VoxelType::UInt8);
   std::fill_n(volume.frame_as<std::uint8_t>(0), volume.voxel_count(), std::uint8_t(0));

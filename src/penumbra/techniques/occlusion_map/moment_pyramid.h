@@ -10,7 +10,10 @@
 // the incremental sigma sqrt(4^k - 4^(k-1)) sigma0, so that level k's region
 // is (up to the kernels' truncation at 2 sigma) a Gaussian of sigma0 2^k.
 // Sigmas are isotropic in world units (per axis in index units), so
-// anisotropic spacing gets a round region (section 4.2).
+// anisotropic spacing gets a round region (section 4.2). Beyond the paper,
+// each level also holds per node the largest u in a box around it (issue 17:
+// a region with nothing above a query occludes nothing, which the moments
+// alone cannot tell; see MomentPyramidView::maximum).
 #include "penumbra/techniques/occlusion_map/gaussian_resampling.h"
 #include "penumbra/techniques/occlusion_map/moment_pyramid_view.h"
 #include "penumbra/volume/volume_view.h"
@@ -69,6 +72,7 @@ class MomentPyramid {
     for (int k = 0; k < v.level_count; ++k) {
       const ivec3 d = level_dims_[std::size_t(k)];
       v.levels[k].texels = levels_[std::size_t(k)].data();
+      v.levels[k].maxima = maxima_[std::size_t(k)].data();
       v.levels[k].dims = d;
       for (int a = 0; a < 3; ++a) {
         v.levels[k].scale[a] = data_dims_[a] > 1 ? float(d[a] - 1) / (float(data_dims_[a] - 1) * spacing_[a]) : 0.0f;
@@ -78,6 +82,8 @@ class MomentPyramid {
   }
 
  private:
+  void build_maxima(const VolumeView& volume);
+
   MomentPyramidSettings settings_;
   ivec3 data_dims_{0};
   vec3 spacing_{1.0f};
@@ -86,6 +92,10 @@ class MomentPyramid {
   std::vector<vec4> clip_planes_;
   std::vector<ivec3> level_dims_;
   std::vector<std::vector<float>> levels_;
+  // Per node of each level: the largest u within a box around it that holds
+  // the region of every point the view's maximum() reads from that node, in
+  // 255ths rounded up (kMaximumSteps).
+  std::vector<std::vector<std::uint8_t>> maxima_;
   std::vector<std::array<ResamplingTaps, 3>> taps_;  // per level, per axis: from the level above (or the data)
 };
 

@@ -7,13 +7,22 @@
 #include "penumbra/base/math.h"
 
 #include <cstddef>
+#include <cstdint>
 
 namespace penumbra {
 
 inline constexpr int kMaxMomentLevels = 8;
+// Half-width, in the level's sigmas, of the box whose largest value a
+// maximum node holds (the Gaussian kernels' truncation radius).
+inline constexpr float kMaximumRadiusSigmas = 2.0f;
+// The maxima are stored in 1 / kMaximumSteps of the value range, rounded up
+// (one byte a node: an eighth of a two-moment level's floats), so a read is
+// never below the true maximum and at most 0.004 above it.
+inline constexpr int kMaximumSteps = 255;
 
 struct MomentLevelView {
   const float* texels = nullptr;  // K floats per node, x fastest
+  const std::uint8_t* maxima = nullptr;  // one byte per node: the largest u around it, in 255ths rounded up
   ivec3 dims{0};
   vec3 scale{0.0f};  // level nodes per world unit, per axis
 };
@@ -33,6 +42,7 @@ template <int K> struct MomentPyramidView {
     for (int i = 0; i < level_count; ++i) {
       const MomentLevelView& l = levels[i];
       d.levels[i].texels = m.structure(l.texels, std::size_t(l.dims.x) * l.dims.y * l.dims.z * K, "the moment pyramid");
+      d.levels[i].maxima = m.structure(l.maxima, std::size_t(l.dims.x) * l.dims.y * l.dims.z, "the moment pyramid's maxima");
     }
     return d;
   }
@@ -54,6 +64,17 @@ template <int K> struct MomentPyramidView {
     const Moments x01 = glm::mix(load(c + sz), load(c + sx + sz), f.x);
     const Moments x11 = glm::mix(load(c + sy + sz), load(c + sx + sy + sz), f.x);
     return glm::mix(glm::mix(x00, x10, f.y), glm::mix(x01, x11, f.y), f.z);
+  }
+
+  // The largest u anywhere in the box of half-width kMaximumRadiusSigmas
+  // sigma around `world` (or a larger box): the nearest node's maximum. A
+  // fractional level reads the coarser of its two levels.
+  PENUMBRA_HD float maximum(float level, vec3 world) const {
+    const float top = float(level_count - 1);
+    level = level < 0.0f ? 0.0f : (level > top ? top : level);
+    const MomentLevelView& l = levels[int(glm::ceil(level))];
+    const ivec3 i = glm::clamp(ivec3(glm::round((world - origin) * l.scale)), ivec3(0), l.dims - 1);
+    return float(l.maxima[i.x + long(l.dims.x) * (i.y + long(l.dims.y) * i.z)]) * (1.0f / float(kMaximumSteps));
   }
 
   // A fractional level: the moments of the two nearest levels, mixed.
