@@ -16,17 +16,22 @@
 // at least level 0) and steps as long as the level's sigma. Unlike the paper's "most
 // occlusion along the ray" (which lets a thin plate through: a one-voxel plate
 // fills a fifth of a two-sigma region at best), the samples' transmittances
-// are multiplied, each raised to its step over kShadowSlab sigmas: successive
-// regions overlap, and a region's occluded fraction stands for a slab of the
-// cone about that thick, so the exponent counts each stretch of the cone
-// once. The shadow query is the iso-value (every occluder above it blocks
-// light, also one less dense than the receiving surface). Near the surface a
-// region overlaps the receiver's own material, which the bound at the
-// iso-value (about m / t^2 for a small occupied share m) would turn into
-// self-shadowing: each sample removes from its moments the share of the
-// half-space under the tangent plane (Gaussian weight Phi(-h / sigma) at
-// height h) at the value under the surface, as if the receiver were locally
-// flat.
+// are multiplied, each raised to its step over kShadowSlab level-0 sigmas:
+// successive regions overlap, and an opaque occluder's share of a region is
+// its thickness over the region's depth, so the share per unit of march must
+// be weighed against a fixed length (an exponent of step / (kShadowSlab
+// sigma_level), as before, let a plate through more the wider the cone: the
+// 16-degree penumbra came out 2.5 times the 8-degree one). The shadow query
+// is the iso-value (every occluder above it blocks light, also one less dense
+// than the receiving surface), and a region whose maximum (the pyramid's
+// maximum grids) stays below it occludes nothing. Near the surface a region
+// overlaps the receiver's own material: each sample removes from its moments
+// the share of the half-space under the tangent plane (Gaussian weight
+// Phi(-h / sigma) at height h), as if the receiver were locally flat; the
+// rest is estimated by a two-valued fit (shadow_occlusion), since
+// Chebyshev's bound, about m / t^2 for a small share m, multiplied along the
+// march, darkened lit surfaces (issue 17: the head CT's skull at 0.67
+// against the cone's 0.89).
 #include "penumbra/base/ray.h"
 #include "penumbra/scene/light.h"
 #include "penumbra/techniques/occlusion_map/moment_bounds.h"
@@ -39,14 +44,14 @@ namespace penumbra {
 
 inline constexpr int kAmbientOcclusionLevels = 4;
 enum class AoCombine : std::uint8_t { Max, Mean, Product };
-// Thickness, in the sample's Gaussian sigmas, of the slab of the light cone
-// one soft-shadow sample stands for (the exponent of its transmittance is
-// step / (kShadowSlab sigma)), and the cone's radius in sigmas of the region
-// that stands for it. Both chosen by the thin-plate and penumbra tests against
-// a brute-force cone (occlusion_reference_test.cpp; docs/PERFORMANCE.md,
-// issue 17 section): a slab of 1 sigma lets 31 % through a one-voxel plate,
-// 0.45 sigma 7 %; a cone of 2 sigmas gives penumbrae 0.6-0.7x the
-// reference's width, 1.5 sigmas 0.84-1.02x.
+// Thickness, in level-0 sigmas, of the slab of the light cone that a full
+// share of occluders in one soft-shadow sample stands for (the exponent of its
+// transmittance is step / (kShadowSlab sigma0)), and the cone's radius in
+// sigmas of the region that stands for it. Both checked by the thin-plate and
+// penumbra tests against a brute-force cone (occlusion_reference_test.cpp;
+// docs/PERFORMANCE.md, issue 17 section): 0.45 lets 7 % through a one-voxel
+// plate, and the penumbrae of 8- and 16-degree lights come out 0.97x and
+// 1.01x the reference's width with a cone of 1.5 sigmas.
 inline constexpr float kShadowSlab = 0.45f;
 inline constexpr float kConeSigmas = 1.5f;
 // Transmittance below which the march stops (the light is gone).
@@ -75,27 +80,52 @@ template <int K> struct OcclusionQueries {
     return glm::clamp(share, 0.0f, 1.0f);
   }
 
-  // Occluded fraction of level `level`'s region around c for query t.
+  // Occluded fraction of level `level`'s region around c for query t: the
+  // bound from its moments, and none where the region's maximum stays below
+  // t (the moments cannot tell material just under the query from material
+  // above it; the maximum can).
   PENUMBRA_HD float occlusion(float level, vec3 c, float t) const {
+    if (pyramid.maximum(level, c) < t) return 0.0f;
     return inside_share(c, pyramid.sigma(level)) * occluded_fraction<K>(pyramid.sample(level, c), t);
   }
 
-  // Occlusion of level `level`'s region around c with the share `own` of it
-  // (the receiver's half-space, of normalised value u_own) taken out of its
-  // moments first.
-  PENUMBRA_HD float occlusion_without(float level, vec3 c, float t, float own, float u_own) const {
+  // The soft-shadow sample's occluded fraction of level `level`'s region
+  // around c: the share `own` of it (the receiver's half-space) taken out of
+  // its moments first, at the receiver's value u_own or the region's maximum
+  // if that is higher (the receiver's material is rarely at the value just
+  // under its surface: dense bone under a partial-volume rim). With two
+  // moments the rest is an estimate, not the bound: the share of the upper
+  // atom of the two-valued distribution with the region's mean and variance
+  // whose upper atom lies midway between t and the region's maximum M. Its
+  // occluders lie in [t, M]; the atom at t is Chebyshev's bound (about
+  // m / t^2 for a small occupied share m: four times m at t = 0.5, which
+  // the march's product turns into dark lit surfaces), the atom at M the
+  // exact share of a two-valued region (which lets occluders just above t
+  // through when denser voxels raise M).
+  PENUMBRA_HD float shadow_occlusion(float level, vec3 c, float t, float own, float u_own) const {
     using Moments = typename MomentPyramidView<K>::Moments;
+    const float top = pyramid.maximum(level, c);
+    if (top < t) return 0.0f;
     Moments m = pyramid.sample(level, c);
     if (own > 1e-4f) {
       const float keep = glm::max(1.0f - own, 1e-3f);
-      float power = u_own;
+      const float u = glm::max(u_own, top);
+      float power = u;
       for (int i = 0; i < K; ++i) {
         m[i] = glm::max(m[i] - own * power, 0.0f) / keep;
-        power *= u_own;
+        power *= u;
       }
       m[1] = glm::max(m[1], m[0] * m[0]);
     }
-    return inside_share(c, pyramid.sigma(level)) * occluded_fraction<K>(m, t);
+    float fraction;
+    if constexpr (K == 2) {
+      const float variance = glm::max(m[1] - m[0] * m[0], kMinMomentVariance);
+      const float d = 0.5f * (t + top) - m[0];
+      fraction = t <= m[0] ? 1.0f : variance / (variance + d * d);
+    } else {
+      fraction = occluded_fraction<K>(m, t);
+    }
+    return inside_share(c, pyramid.sigma(level)) * fraction;
   }
 
   // Unoccluded fraction of the surroundings of p (unit normal n): 1 - occlusion.
@@ -138,7 +168,7 @@ template <int K> struct OcclusionQueries {
   }
 
   // Unoccluded fraction toward a light: the product of the samples'
-  // transmittances (1 - occlusion)^(step / (kShadowSlab sigma)) along the
+  // transmittances (1 - occlusion)^(step / (kShadowSlab sigma0)) along the
   // march from p (moved off the surface along n like the first AO sample)
   // toward the light, up to the light or the volume's boundary. t: the
   // query (the iso-value); u_own: the receiver's value under the surface,
@@ -163,9 +193,9 @@ template <int K> struct OcclusionQueries {
         const vec3 c = start + s * to_light;
         const float sigma = pyramid.sigma(level);
         const float own = u_own < 0.0f ? 0.0f : 0.5f * std::erfc(glm::dot(c - p, n) / (glm::sqrt(2.0f) * sigma));
-        const float occlusion = occlusion_without(level, c, t, own, u_own);
+        const float occlusion = shadow_occlusion(level, c, t, own, u_own);
         if (occlusion >= 1.0f) return 0.0f;
-        log_transmittance += covered / (kShadowSlab * sigma) * glm::log(1.0f - occlusion);
+        log_transmittance += covered / (kShadowSlab * pyramid.sigma0) * glm::log(1.0f - occlusion);
         s += step;
       }
       if (log_transmittance <= cutoff) return 0.0f;

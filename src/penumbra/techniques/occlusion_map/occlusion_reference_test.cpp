@@ -180,10 +180,11 @@ TEST(OcclusionMapReference, OneVoxelPlateCastsAnUmbra) {
 // voxels below, for disk lights of 8 and 16 degrees (cone radii 3.9 and 8.0
 // voxels at the plate, both at least level 0's 1.5 sigma0 = 3 voxels): its
 // width (from 10 % to 90 % lit, along x) against the brute-force cone's, and
-// its growth with the light's size. Measured: widths 5.1 and 12.6 voxels
-// against 6.1 and 12.4, ratio 2.46 against 2.02; the map's shadow reaches
-// 3-4 voxels further out (the two-moment bound at the iso-value takes a
-// half-covered region for nearly full), so the profile's MAE is 0.11-0.13.
+// its growth with the light's size. Measured: widths 5.9 and 12.5 voxels
+// against 6.1 and 12.4, ratio 2.12 against 2.02 (before the maxima: 5.1 and
+// 12.6, ratio 2.46); the map's shadow reaches 2.4-4.7 voxels further out
+// (the two-valued estimate still takes a half-covered region for more than
+// half), so the profile's MAE is 0.08-0.15.
 struct Profile {
   double width = 0.0, mae = 0.0, centre_shift = 0.0;
 };
@@ -229,8 +230,10 @@ TEST(OcclusionMapReference, PenumbraWidthFollowsTheLightSize) {
   const double ratio = got[1].width / got[0].width, ref_ratio = want[1].width / want[0].width;
   std::printf("[occlusion-map reference] penumbra width 16 / 8 degrees: %.2f (cone reference %.2f)\n", ratio,
               ref_ratio);
-  EXPECT_GT(ratio, 0.8 * ref_ratio);
-  EXPECT_LT(ratio, 1.4 * ref_ratio);
+  // 1.05 with the exponent over level-0 slabs; over the level's own sigma
+  // (before the maxima) it was 1.22: the wider cone's plate let more through.
+  EXPECT_GT(ratio, 0.9 * ref_ratio);
+  EXPECT_LT(ratio, 1.15 * ref_ratio);
 }
 
 // Every occluder above the iso-value shadows, also one less dense than the
@@ -436,44 +439,97 @@ TEST(OcclusionMapReference, AmbientOcclusionTracksBruteForceRays) {
   EXPECT_GE(checked, 2);
 }
 
-// Soft shadows on the AO data sets against a brute-force cone (3 degrees, 12
-// rings = 432 rays) per surface pixel, light from the upper front: the
-// correlation and MAE of the visibility, and the share of the reference's
-// umbra pixels (visibility < 0.1) that the map leaves more than half lit.
-TEST(OcclusionMapReference, DISABLED_SoftShadowsOnDataSets) {
-  for (const AoDataSet& set : ao_data_sets()) {
-    const ShadowCase c(set.volume, MomentPyramidSettings{}, set.iso);
-    Scene scene = procedural_scene("spheres", set.volume->dims(), 40);
-    scene.set_volume(set.volume);
-    scene.set_camera(Camera::framing(set.volume->world_box(), set.view_dir));
-    const RenderView& view = c.reference.view;
-    SceneResources resources;
-    resources.update(scene);
-    const RenderView eye = resources.view(scene);
-    const vec3 to_light = glm::normalize(vec3(-0.5f, -0.4f, 1.0f));
-    std::vector<double> map, ref;
-    int umbra = 0, leaking = 0;
-    for_each_surface_pixel(view, eye, set.iso, 40, [&](int, int, vec3 p, vec3 n, const auto& sampler) {
-      if (glm::dot(n, to_light) <= 0.05f) return;  // turned away from the light
-      const float under = sampler(view.volume.index_from_world(p - 0.5f * n));
-      OcclusionQueries<2> q;
-      q.pyramid = c.pyramid.view<2>();
-      q.box = set.volume->world_box();
-      const float m = q.soft_shadow(p, n, to_light, kInfinity, std::tan(glm::radians(3.0f)), set.iso,
-                                    glm::max(set.iso, under));
-      const float r = c.reference.visibility(p, n, to_light, 3.0f);
-      map.push_back(m);
-      ref.push_back(r);
-      if (r < 0.1f) {
-        ++umbra;
-        leaking += m > 0.5f ? 1 : 0;
-      }
-    });
-    const Agreement a = agreement(map, ref);
-    std::printf("[occlusion-map shadow reference] %-18s %4d px: correlation %.3f, MAE %.3f, mean %.3f vs %.3f, "
-                "umbra px more than half lit %d of %d\n",
-                set.name, a.pixels, a.correlation, a.mae, a.mean_map, a.mean_ref, leaking, umbra);
+// Soft shadows on the AO data sets and three at twice their resolution
+// against a brute-force cone (3 degrees, 12 rings = 432 rays) per surface
+// pixel, light from the upper front: the correlation and MAE of the
+// visibility, its mean against the cone's, and the reference's umbra pixels
+// (visibility < 0.1) that the map leaves more than half lit.
+struct ShadowAgreement {
+  Agreement agreement;
+  int umbra = 0, leaking = 0;
+};
+
+ShadowAgreement compare_soft_shadows(const AoDataSet& set) {
+  const ShadowCase c(set.volume, MomentPyramidSettings{}, set.iso);
+  Scene scene = procedural_scene("spheres", set.volume->dims(), 40);
+  scene.set_volume(set.volume);
+  scene.set_camera(Camera::framing(set.volume->world_box(), set.view_dir));
+  const RenderView& view = c.reference.view;
+  SceneResources resources;
+  resources.update(scene);
+  const RenderView eye = resources.view(scene);
+  const vec3 to_light = glm::normalize(vec3(-0.5f, -0.4f, 1.0f));
+  std::vector<double> map, ref;
+  ShadowAgreement out;
+  for_each_surface_pixel(view, eye, set.iso, 40, [&](int, int, vec3 p, vec3 n, const auto& sampler) {
+    if (glm::dot(n, to_light) <= 0.05f) return;  // turned away from the light
+    const float under = sampler(view.volume.index_from_world(p - 0.5f * n));
+    OcclusionQueries<2> q;
+    q.pyramid = c.pyramid.view<2>();
+    q.box = set.volume->world_box();
+    const float m = q.soft_shadow(p, n, to_light, kInfinity, std::tan(glm::radians(3.0f)), set.iso,
+                                  glm::max(set.iso, under));
+    const float r = c.reference.visibility(p, n, to_light, 3.0f);
+    map.push_back(m);
+    ref.push_back(r);
+    if (r < 0.1f) {
+      ++out.umbra;
+      out.leaking += m > 0.5f ? 1 : 0;
+    }
+  });
+  out.agreement = agreement(map, ref);
+  const Agreement& a = out.agreement;
+  std::printf("[occlusion-map shadow reference] %-18s %4d px: correlation %.3f, MAE %.3f, mean %.3f vs %.3f, "
+              "umbra px more than half lit %d of %d\n",
+              set.name, a.pixels, a.correlation, a.mae, a.mean_map, a.mean_ref, out.leaking, out.umbra);
+  return out;
+}
+
+std::vector<AoDataSet> shadow_data_sets() {
+  std::vector<AoDataSet> sets = ao_data_sets();
+  if (auto v = shared_volume("ct_head_cranium_256x256x108_int16.nhdr", 2)) {
+    sets.push_back({"head-ct/2", v, 0.47f, vec3(0.6f, -1.0f, 0.45f)});
   }
+  if (auto v = shared_volume("engine_256x256x128_uint8.nhdr", 2)) {
+    sets.push_back({"engine-ct/2", v, 0.5f, vec3(0.6f, -1.0f, 0.45f)});
+  }
+  if (auto v = shared_volume("mri_brainsmall_128x128x84_uint8.nhdr", 1)) {
+    sets.push_back({"mri-brainsmall", v, 0.3f, vec3(0.6f, -1.0f, 0.45f)});
+  }
+  return sets;
+}
+
+// Bounds at about 1.2x the measured MAE (docs/PERFORMANCE.md, issue 17
+// section, "after (maxima)"), each below the Chebyshev march's error before
+// the maxima; lit surfaces no darker on average than 0.06 below the cone
+// (the head CT at twice the test's resolution: 0.15, the defect's remainder),
+// and at most a twelfth of the data sets' umbra pixels more than half lit
+// (15 of 233 measured; 6 with the Chebyshev march before the maxima).
+TEST(OcclusionMapReference, SoftShadowsTrackABruteForceConeOnDataSets) {
+  struct Bound {
+    const char* name;
+    double mae, darker;
+  };
+  const Bound bounds[] = {{"balls-over-slab", 0.12, 0.09},  {"spheres-field", 0.085, 0.08},
+                          {"engine-ct/4", 0.082, 0.04},     {"head-ct/4", 0.235, 0.2},
+                          {"nucleon", 0.01, 0.01},          {"mri-brainsmall/2", 0.235, 0.1},
+                          {"head-ct/2", 0.18, 0.18},        {"engine-ct/2", 0.08, 0.06},
+                          {"mri-brainsmall", 0.2, 0.16}};
+  int checked = 0, umbra = 0, leaking = 0;
+  for (const AoDataSet& set : shadow_data_sets()) {
+    const ShadowAgreement s = compare_soft_shadows(set);
+    umbra += s.umbra;
+    leaking += s.leaking;
+    for (const Bound& b : bounds) {
+      if (std::string(b.name) != set.name) continue;
+      ++checked;
+      EXPECT_LT(s.agreement.mae, b.mae) << set.name;
+      EXPECT_GT(s.agreement.mean_map, s.agreement.mean_ref - b.darker) << set.name;
+    }
+  }
+  EXPECT_GE(checked, 2);
+  std::printf("[occlusion-map shadow reference] umbra pixels more than half lit: %d of %d\n", leaking, umbra);
+  EXPECT_LE(leaking, umbra / 12 + 1);
 }
 
 // The measurement behind the AO defaults: every data set, for both moment
