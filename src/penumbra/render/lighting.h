@@ -96,6 +96,19 @@ PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Float sample_world(const VolumeVie
   return AnyVoxelSampler(grid.data, grid.dims, grid.type).sample<L>((p - V(grid.origin)) / V(grid.spacing));
 }
 
+// The visibility of light `light` at p on opaque plane `plane`: the
+// functor's own plane lookup where it has one (a shadow cache on the plane,
+// sat_common/plane_caches.h), its visibility at p otherwise.
+template <class Visibility>
+PENUMBRA_HD PENUMBRA_FORCE_INLINE vec3 plane_visibility(const Visibility& visibility, int light, int plane, vec3 p,
+                                                        const LightSample& ls) {
+  if constexpr (requires { visibility.plane(light, plane, p, ls); }) {
+    return visibility.plane(light, plane, p, ls);
+  } else {
+    return visibility(light, p, ls);
+  }
+}
+
 // A cached visibility: the cache grid inside `box` (where the volume's
 // samples lie), the technique's direct lookup `direct` elsewhere (plane hits);
 // no cache (data == nullptr): always direct.
@@ -224,7 +237,7 @@ struct ScatteringLighting {
       const float cosine = glm::dot(normal, ls.to_light);
       if (cosine <= 0.0f) continue;
       if (blocked_by_planes(v, h.position, ls, h.plane)) continue;
-      sum += cosine * visibility(i, h.position, ls) * ls.radiance;
+      sum += cosine * plane_visibility(visibility, i, h.plane, h.position, ls) * ls.radiance;
     }
     return p.color * sum;
   }

@@ -4,6 +4,7 @@
 #include "penumbra/render/lighting.h"
 #include "penumbra/scene/light.h"
 #include "penumbra/techniques/sat_common/cartesian_table_grid.h"
+#include "penumbra/techniques/sat_common/plane_caches.h"
 #include "penumbra/techniques/sat_common/summed_area_table.h"
 #include "penumbra/volume/volume_view.h"
 
@@ -69,16 +70,24 @@ struct ConeMarch {
   }
 };
 
-// Per-light caches inside the volume box, the cone march elsewhere.
+// Per-light caches inside the volume box and on the opaque planes, the cone
+// march elsewhere.
 struct CachedConeMarch {
   ConeMarch direct;
   const VolumeView* caches = nullptr;  // per light; data == nullptr: no cache
+  PlaneCachesView planes;              // per light and plane (cone_shadows.cpp)
 
   template <class Mirror> CachedConeMarch on_device(Mirror& m) const {
-    return CachedConeMarch{direct.on_device(m), m.volumes(caches, m.light_count(), "the shadow caches")};
+    return CachedConeMarch{direct.on_device(m), m.volumes(caches, m.light_count(), "the shadow caches"),
+                           planes.on_device(m)};
   }
   PENUMBRA_HD vec3 operator()(int light, vec3 p, const LightSample& ls) const {
     return lanes<ScalarLanes>(light, p, ls, true);
+  }
+  // A point on opaque plane `plane`: its cache, or the cone march without one.
+  PENUMBRA_HD vec3 plane(int light, int plane, vec3 p, const LightSample& ls) const {
+    if (planes.has(light, plane)) return vec3(planes.sample(light, plane, p));
+    return direct(light, p, ls);
   }
   template <class L>
   PENUMBRA_HD typename L::Vec3 lanes(int light, const typename L::Vec3& p, const LightSampleL<L>& ls,

@@ -40,6 +40,7 @@ class ConeShadows final : public Technique {
     const bool table_rebuilt = table_.update(scene, resources_, params.number("sat_resolution"));
     if (table_rebuilt) {
       caches_.clear();
+      plane_caches_.clear();
       ++rebuilds_;
     }
     const float voxel = scene.volume().view().min_spacing();
@@ -54,6 +55,7 @@ class ConeShadows final : public Technique {
     if (derived) derive_cones(scene.lights(), cone_);
     if (!params.flag("shadow_cache")) {
       caches_.clear();
+      plane_caches_.clear();
       return;
     }
     ParameterValues cache_params = params;
@@ -68,33 +70,45 @@ class ConeShadows final : public Technique {
     for (const Light& l : scene.lights()) {
       sizes.push_back(derived ? vec4(l.angle_deg, l.spread_y_deg(), l.radius, float(l.profile)) : vec4(0.0f));
     }
-    if (caches_.current(cache_params) && placements == placements_ && sizes == sizes_) return;
     const std::vector<Light>& lights = scene.lights();
     const ConeMarch cone = cone_;
-    rebuilds_ += std::uint64_t(caches_.update(
+    if (!(caches_.current(cache_params) && placements == placements_ && sizes == sizes_)) {
+      rebuilds_ += std::uint64_t(caches_.update(
         lights.size(), cone.box, visibility_cache_dims(scene.volume().dims(), float(params.number("cache_resolution"))),
         cache_params, [&](std::size_t i) { return lights[i].type != LightType::Environment; },
         [&](std::size_t i) {
           return i >= placements_.size() || !(placements[i] == placements_[i]) || sizes[i] != sizes_[i];
         },
         [&](std::size_t i, vec3 p) { return cone.transmittance(int(i), p, sample_light(lights[i], p)); }));
-    placements_ = std::move(placements);
-    sizes_ = std::move(sizes);
+      placements_ = std::move(placements);
+      sizes_ = std::move(sizes);
+    }
+    // The planes' caches follow the 3D caches (rebuilds_ counts every
+    // change of what the cones read, the lights' sizes included) and the
+    // planes; a plane move rebuilds only them, which rebuilds() does not
+    // count (the device mirrors see it through plane_builds_).
+    const Box3 box = cone.box;
+    // One node per voxel: a floor's penumbra is sharper than the volume's
+    // lit samples need (a grid of the 3D cache's cells widened the edge
+    // penumbra of EdgePenumbraScalesWithTheLightsAngle by 15 %).
+    plane_builds_ += std::uint64_t(plane_caches_.update(
+        lights, scene.planes(), box, voxel, rebuilds_,
+        [&](int i, vec3 p) { return cone.transmittance(i, p, sample_light(lights[std::size_t(i)], p)); }));
   }
 
   void render(const Scene& scene, Image& image, RenderStats* stats) override {
     RenderView view = resources_.view(scene);
-    view.structures = rebuilds_;  // the tables' and caches' version, for device mirrors
+    view.structures = rebuilds_ + plane_builds_;  // the tables' and caches' version, for device mirrors
     const Shading shading = scene.material().shading;
     if (caches_.built()) {
-      const CachedConeMarch cached{cone_, caches_.views()};
+      const CachedConeMarch cached{cone_, caches_.views(), plane_caches_.view()};
       render_lit(view, cached, shading, image, stats);
     } else {
       render_lit(view, cone_, shading, image, stats);
     }
   }
 
-  std::uint64_t aux_bytes() const override { return table_.bytes() + caches_.bytes(); }
+  std::uint64_t aux_bytes() const override { return table_.bytes() + caches_.bytes() + plane_caches_.bytes(); }
   // The table build and each light's cache build count one each.
   std::uint64_t rebuilds() const override { return rebuilds_; }
 
@@ -105,7 +119,9 @@ class ConeShadows final : public Technique {
   LightVisibilityCaches caches_;
   std::vector<LightPlacement> placements_;  // what the caches were built for
   std::vector<vec4> sizes_;                 // and the lights' sizes (with derived cones)
+  PlaneCaches plane_caches_;
   std::uint64_t rebuilds_ = 0;
+  std::uint64_t plane_builds_ = 0;
 };
 
 }  // namespace

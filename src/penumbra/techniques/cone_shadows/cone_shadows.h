@@ -46,8 +46,12 @@
 //            grid per light, rebuilt with the table, for that light when it
 //            moves (not for its colour or intensity), and for all when the
 //            cone parameters change
+//            and, with the cache, a 2D grid per light on each opaque plane
+//            (sat_common/plane_caches.h: one node per voxel over the region
+//            the box can shadow), rebuilt with the 3D caches and when a plane
+//            moves (which rebuilds() does not count)
 //   render:  one ray-casting pass; per lit sample one cache read per light
-//            (or one cone march)
+//            (or one cone march), per plane pixel one bilinear read
 #include "penumbra/render/technique.h"
 
 namespace penumbra {
