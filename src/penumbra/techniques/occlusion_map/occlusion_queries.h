@@ -119,9 +119,9 @@ template <int K> struct OcclusionQueries {
     }
     float fraction;
     if constexpr (K == 2) {
-      const float variance = glm::max(m[1] - m[0] * m[0], kMinMomentVariance);
-      const float d = 0.5f * (t + top) - m[0];
-      fraction = t <= m[0] ? 1.0f : variance / (variance + d * d);
+      // Chebyshev's expression at the atom: the share of the upper atom of
+      // the two-valued distribution with these moments (atom > t > mean).
+      fraction = t <= m[0] ? 1.0f : chebyshev_occlusion(m[0], m[1], 0.5f * (t + top));
     } else {
       fraction = occluded_fraction<K>(m, t);
     }
