@@ -237,6 +237,11 @@ TEST(MomentPyramid, MaximaCoverEveryRegionAndStayLocal) {
     const int k = int(glm::ceil(level));
     vec3 spacing;
     for (int a = 0; a < 3; ++a) spacing[a] = 1.0f / view.levels[k].scale[a];
+    // The node read is the nearest one (roundf of the clamped node coordinates).
+    const MomentLevelView& l = view.levels[k];
+    const ivec3 node = glm::clamp(ivec3(glm::round((c - view.origin) * l.scale)), ivec3(0), l.dims - 1);
+    const std::uint8_t stored = l.maxima[node.x + l.dims.x * (node.y + l.dims.y * node.z)];
+    EXPECT_EQ(read, float(stored) * (1.0f / float(kMaximumSteps))) << n;
     if (largest_within(c, vec3(3.0f * sigma) + 2.0f * spacing) == 0.0f) {
       ++local;
       EXPECT_EQ(read, 0.0f) << n;

@@ -49,6 +49,8 @@ template <int K> struct MomentPyramidView {
 
   // Level k's region is a Gaussian of standard deviation sigma0 * 2^k.
   PENUMBRA_HD float sigma(float level) const { return sigma0 * glm::exp2(level); }
+  // The same at a whole level, without exp2 (exact: 2^level is a power of two).
+  PENUMBRA_HD float sigma_at(int level) const { return sigma0 * float(1 << level); }
 
   PENUMBRA_HD Moments sample(int level, vec3 world) const {
     const MomentLevelView& l = levels[level < 0 ? 0 : (level >= level_count ? level_count - 1 : level)];
@@ -73,7 +75,12 @@ template <int K> struct MomentPyramidView {
     const float top = float(level_count - 1);
     level = level < 0.0f ? 0.0f : (level > top ? top : level);
     const MomentLevelView& l = levels[int(glm::ceil(level))];
-    const ivec3 i = glm::clamp(ivec3(glm::round((world - origin) * l.scale)), ivec3(0), l.dims - 1);
+    // Rounded to the nearest node, halves up (the coordinates are clamped
+    // to >= 0 first, where that is roundf's rounding, without its call).
+    const vec3 p = glm::clamp((world - origin) * l.scale, vec3(0.0f), vec3(l.dims - 1));
+    ivec3 i(p);
+    i += ivec3(glm::greaterThanEqual(p - vec3(i), vec3(0.5f)));
+    i = glm::min(i, l.dims - 1);
     return float(l.maxima[i.x + long(l.dims.x) * (i.y + long(l.dims.y) * i.z)]) * (1.0f / float(kMaximumSteps));
   }
 

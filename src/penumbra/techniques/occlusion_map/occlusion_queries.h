@@ -75,7 +75,14 @@ template <int K> struct OcclusionQueries {
     const float scale = 1.0f / (glm::sqrt(2.0f) * sigma);
     float share = 1.0f;
     for (int a = 0; a < 3; ++a) {
-      share *= 0.5f * (std::erf((box.upper[a] - c[a]) * scale) - std::erf((box.lower[a] - c[a]) * scale));
+      // erf is exactly +-1 in float beyond 4 (1 - erf(4) = 1.5e-8), so an
+      // axis along which the centre lies more than 4 / scale inside both
+      // faces contributes exactly 1 and one that far outside a face exactly
+      // 0, without the erf calls (most samples of a march lie inside).
+      const float above = (box.upper[a] - c[a]) * scale, below = (box.lower[a] - c[a]) * scale;
+      if (above < -4.0f || below > 4.0f) return 0.0f;
+      if (above > 4.0f && below < -4.0f) continue;
+      share *= 0.5f * (std::erf(above) - std::erf(below));
     }
     return glm::clamp(share, 0.0f, 1.0f);
   }
@@ -85,8 +92,12 @@ template <int K> struct OcclusionQueries {
   // t (the moments cannot tell material just under the query from material
   // above it; the maximum can).
   PENUMBRA_HD float occlusion(float level, vec3 c, float t) const {
+    return occlusion(level, pyramid.sigma(level), c, t);
+  }
+  // The same with the level's sigma given.
+  PENUMBRA_HD float occlusion(float level, float sigma, vec3 c, float t) const {
     if (pyramid.maximum(level, c) < t) return 0.0f;
-    return inside_share(c, pyramid.sigma(level)) * occluded_fraction<K>(pyramid.sample(level, c), t);
+    return inside_share(c, sigma) * occluded_fraction<K>(pyramid.sample(level, c), t);
   }
 
   // The soft-shadow sample's occluded fraction of level `level`'s region
@@ -103,6 +114,10 @@ template <int K> struct OcclusionQueries {
   // exact share of a two-valued region (which lets occluders just above t
   // through when denser voxels raise M).
   PENUMBRA_HD float shadow_occlusion(float level, vec3 c, float t, float own, float u_own) const {
+    return shadow_occlusion(level, pyramid.sigma(level), c, t, own, u_own);
+  }
+  // The same with the level's sigma given.
+  PENUMBRA_HD float shadow_occlusion(float level, float sigma, vec3 c, float t, float own, float u_own) const {
     using Moments = typename MomentPyramidView<K>::Moments;
     const float top = pyramid.maximum(level, c);
     if (top < t) return 0.0f;
@@ -125,7 +140,7 @@ template <int K> struct OcclusionQueries {
     } else {
       fraction = occluded_fraction<K>(m, t);
     }
-    return inside_share(c, pyramid.sigma(level)) * fraction;
+    return inside_share(c, sigma) * fraction;
   }
 
   // Unoccluded fraction of the surroundings of p (unit normal n): 1 - occlusion.
@@ -133,8 +148,9 @@ template <int K> struct OcclusionQueries {
     float worst = 0.0f, sum = 0.0f, open = 1.0f;
     const int levels = glm::min(kAmbientOcclusionLevels, pyramid.level_count);
     for (int k = 0; k < levels; ++k) {
-      const vec3 q = p + n * (ao_offset * pyramid.sigma(float(k)));
-      const float occlusion = this->occlusion(float(k), q, t);
+      const float sigma = pyramid.sigma_at(k);
+      const vec3 q = p + n * (ao_offset * sigma);
+      const float occlusion = this->occlusion(float(k), sigma, q, t);
       worst = glm::max(worst, occlusion);
       sum += occlusion;
       open *= 1.0f - occlusion;
@@ -188,14 +204,18 @@ template <int K> struct OcclusionQueries {
       for (int i = 0; i < 4 && s < inside.t1; ++i) {
         const float level = glm::clamp(glm::log2(glm::max((s + lift) * spread / (kConeSigmas * pyramid.sigma0), 1.0f)),
                                        0.0f, top);
-        const float step = pyramid.sigma(glm::floor(level));
+        const int whole = int(level);  // level >= 0
+        const float step = pyramid.sigma_at(whole);
         const float covered = glm::min(step, inside.t1 - s);
         const vec3 c = start + s * to_light;
-        const float sigma = pyramid.sigma(level);
-        const float own = u_own < 0.0f ? 0.0f : 0.5f * std::erfc(glm::dot(c - p, n) / (glm::sqrt(2.0f) * sigma));
-        const float occlusion = shadow_occlusion(level, c, t, own, u_own);
+        const float sigma = level == float(whole) ? step : pyramid.sigma(level);
+        // The receiver's share; beyond height 2.7 it is under 7e-5, which
+        // shadow_occlusion counts as none (own <= 1e-4), so erfc is skipped.
+        const float height = glm::dot(c - p, n) / (glm::sqrt(2.0f) * sigma);
+        const float own = u_own < 0.0f || height > 2.7f ? 0.0f : 0.5f * std::erfc(height);
+        const float occlusion = shadow_occlusion(level, sigma, c, t, own, u_own);
         if (occlusion >= 1.0f) return 0.0f;
-        log_transmittance += covered / (kShadowSlab * pyramid.sigma0) * glm::log(1.0f - occlusion);
+        if (occlusion > 0.0f) log_transmittance += covered / (kShadowSlab * pyramid.sigma0) * glm::log(1.0f - occlusion);
         s += step;
       }
       if (log_transmittance <= cutoff) return 0.0f;
