@@ -53,11 +53,17 @@ struct IpsviKernel {
 struct IpsviRayCounts {
   std::uint64_t view_samples = 0;   // samples of the viewing rays
   std::uint64_t light_samples = 0;  // samples of piecewise-integration segments
+  std::uint64_t exact_plane_rays = 0;  // plane hits on a shadow edge that marched their own light ray
 };
 
 // Below this sine of the angle between the light and the viewing ray a
 // sample continues the previous sample's light (ipsvi_light_at).
 inline constexpr float kAlongRaySine = 0.1f;
+
+// A plane hit whose four cache texels, each continued to it, differ by more
+// than this in transmittance lies on a shadow edge; it marches its own light
+// ray to the box instead (plane_light). Measured in docs/ipsvi.md.
+inline constexpr float kPlaneEdgeSpread = 0.02f;
 
 // What one ray remembers between its samples.
 struct RayCacheState {
@@ -109,9 +115,12 @@ PENUMBRA_HD inline void flush_run(const IpsviKernel& k, RayCacheState& st) {
 // before they are blended. (Blending the depths instead would let a texel
 // written far behind p lend its shorter segment to one written before the
 // structure p sits in.) Texels already ahead of p are left out.
+// `spread`, when given, receives the largest difference between the texels'
+// direct light once continued to p (0 for one texel).
 template <class Sampler>
 PENUMBRA_HD CachedLight ipsvi_light_at(const IpsviKernel& k, const Sampler& sampler, vec3 p, vec3 proj, float sigma,
-                                       vec3 color, RayCacheState& st, IpsviRayCounts& counts) {
+                                       vec3 color, RayCacheState& st, IpsviRayCounts& counts,
+                                       float* spread = nullptr) {
   const RenderView& v = *k.view;
   const ForwardScattering& fs = k.scattering;
   const vec2 uv(proj);
@@ -192,6 +201,15 @@ PENUMBRA_HD CachedLight ipsvi_light_at(const IpsviKernel& k, const Sampler& samp
   out.direct = 0.0f;
   for (int i = 0; i < n; ++i) out.direct += weights[i] * base_direct[i] * exp_nonpositive(-tau[i].direct);
   out.direct /= weight_sum;
+  if (spread) {
+    float lo = 1.0f, hi = 0.0f;
+    for (int i = 0; i < n; ++i) {
+      const float d = base_direct[i] * exp_nonpositive(-tau[i].direct);
+      lo = glm::min(lo, d);
+      hi = glm::max(hi, d);
+    }
+    *spread = glm::max(hi - lo, 0.0f);
+  }
   if (k.paper) {
     out.color = vec3(0.0f);
     for (int i = 0; i < n; ++i) {
@@ -223,6 +241,30 @@ PENUMBRA_HD inline vec3 ipsvi_visibility(const IpsviKernel& k, const CachedLight
   if (!k.scattering.has_diffuse()) return light.color;
   const float ratio = phase ? k.cone_phase.at(glm::dot(sample_light(k.view->lights[0], p).to_light, ray_dir)) : 1.0f;
   return paper_visibility(light.color, light.diffuse, albedo, ratio);
+}
+
+// The light reaching plane hit q. A floor far below the volume reads texels
+// whose light rays pass up to a texel (up to 4 along the view, cache_fit.h)
+// beside its own, written after the occluders: across a shadow edge the
+// bilinear read spreads the edge over that footprint, seen as a one-texel
+// bright line along the shadow's inside (issue 21). Where the four texels
+// disagree (kPlaneEdgeSpread) q's own light ray is marched to the box
+// instead, as shadow-rays does; the diffuse part stays the cache's.
+template <class Sampler>
+PENUMBRA_HD CachedLight plane_light(const IpsviKernel& k, const Sampler& sampler, vec3 q, RayCacheState& st,
+                                    IpsviRayCounts& counts) {
+  float spread = 0.0f;
+  CachedLight light = ipsvi_light_at(k, sampler, q, k.projection.project(q), 0.0f, vec3(0.0f), st, counts, &spread);
+  if (!k.piecewise || !(spread > kPlaneEdgeSpread)) return light;
+  const LightSample ls = sample_light(k.view->lights[0], q);
+  std::uint64_t& samples = counts.light_samples;
+  const OpticalDepth tau =
+      k.paper ? light_segment_depth<true>(*k.shadow, sampler, q, ls.to_light, ls.distance, k.scattering, samples)
+              : light_segment_depth(*k.shadow, sampler, q, ls.to_light, ls.distance, k.scattering, samples);
+  light.direct = exp_nonpositive(-tau.direct);
+  light.color = vec3(light.direct) + tau.emitted;
+  ++counts.exact_plane_rays;
+  return light;
 }
 
 // Adds a sample at cache position uv and depth to the ray's run for its
@@ -333,7 +375,7 @@ PENUMBRA_HD vec4 trace_ipsvi_ray(const IpsviKernel& k, const Sampler& sampler, c
   if (!terminated) {
     if (plane >= 0) {
       const vec3 q = ray.at(t_plane);
-      const CachedLight light = ipsvi_light_at(k, sampler, q, k.projection.project(q), 0.0f, vec3(0.0f), st, counts);
+      const CachedLight light = plane_light(k, sampler, q, st, counts);
       const vec3 visibility = ipsvi_visibility(k, light, vec3(k.scattering.blend), q, ray.direction, false);
       color += transmittance *
                ScatteringLighting<FixedVisibility>{&v, {visibility}, v.material.shading}.plane(

@@ -135,7 +135,7 @@ void IpsviRenderer::render(const Scene& scene, Image& image, RenderStats* stats)
   const PixelRect volume_rect = projected_box_rect(view.camera, width, height, view.box);
   // Planes need every pixel: a floor outside the volume's footprint may lie in its shadow.
   const PixelRect rect = view.plane_count > 0 ? image_rect : volume_rect;
-  std::atomic<std::uint64_t> view_samples{0}, light_samples{0}, write_samples{0};
+  std::atomic<std::uint64_t> view_samples{0}, light_samples{0}, write_samples{0}, exact_plane_rays{0};
   std::vector<BlockPixel> block;
 
   for (std::size_t li = 0; li < lights_.size(); ++li) {
@@ -250,6 +250,7 @@ void IpsviRenderer::render(const Scene& scene, Image& image, RenderStats* stats)
                 }
                 view_samples.fetch_add(counts.view_samples, std::memory_order_relaxed);
                 light_samples.fetch_add(counts.light_samples, std::memory_order_relaxed);
+                exact_plane_rays.fetch_add(counts.exact_plane_rays, std::memory_order_relaxed);
               },
               8);
           cache_.resolve(advance);
@@ -268,6 +269,7 @@ void IpsviRenderer::render(const Scene& scene, Image& image, RenderStats* stats)
   counts_.view_samples = view_samples.load();
   counts_.light_samples = light_samples.load();
   counts_.write_samples = write_samples.load();
+  counts_.exact_plane_rays = exact_plane_rays.load();
   if (stats) {
     stats->samples += counts_.view_samples;
     stats->rays += std::uint64_t(width) * std::uint64_t(height) * lights_.size();

@@ -48,6 +48,7 @@ struct IpsviFrameCounts {
   std::uint64_t light_samples = 0;    // piecewise-integration samples at the viewing-ray samples
   std::uint64_t write_samples = 0;    // piecewise-integration samples of cache writes
   std::uint64_t prepass_samples = 0;  // ERT extension pre-pass
+  std::uint64_t exact_plane_rays = 0;  // plane hits on a shadow edge that marched their own light ray
   std::uint64_t blocks = 0;           // blocks of lines processed (synchronisation points)
 };
 
