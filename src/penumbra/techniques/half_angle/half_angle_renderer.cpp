@@ -4,6 +4,7 @@
 #include "penumbra/base/memory_budget.h"
 #include "penumbra/base/parallel.h"
 #include "penumbra/render/render_lit.h"
+#include "penumbra/techniques/half_angle/diffuse_blur.h"
 #include "penumbra/techniques/half_angle/half_angle_kernels.h"
 
 #include <algorithm>
@@ -58,47 +59,6 @@ Rect light_rect(const LightCacheProjection& p, const vec3* points, int count) {
   const float n = float(p.size);
   return Rect{int(std::clamp(std::floor(lo.x) - 1.0f, 0.0f, n)), int(std::clamp(std::floor(lo.y) - 1.0f, 0.0f, n)),
               int(std::clamp(std::ceil(hi.x) + 1.0f, 0.0f, n)), int(std::clamp(std::ceil(hi.y) + 1.0f, 0.0f, n))};
-}
-
-// Gaussian blur of the diffuse channels (y, z, w), variance `variance`
-// texels^2 along x and y, by passes of the binomial [w, 1 - 2w, w] (edges
-// clamped), over the rectangle `r` of texels that are not yet the unlit 1:
-// the same as blurring the whole n x n buffer. (Blurring only the current
-// slice's rectangle, as before, stopped light that had left the slice's
-// footprint from spreading.) `r` grows by a texel per pass.
-void blur_diffuse(std::vector<vec4>& buffer, std::vector<vec4>& scratch, int n, Rect& r, vec2 variance) {
-  auto blur_axis = [&](bool along_x, float v) {
-    if (!(v > 1e-4f)) return;
-    const int passes = int(std::ceil(v / 0.5f));
-    const float w = v / (2.0f * float(passes));
-    for (int pass = 0; pass < passes; ++pass) {
-      if (along_x) {
-        r.x0 = std::max(r.x0 - 1, 0);
-        r.x1 = std::min(r.x1 + 1, n);
-      } else {
-        r.y0 = std::max(r.y0 - 1, 0);
-        r.y1 = std::min(r.y1 + 1, n);
-      }
-      parallel_for(r.y0, r.y1, [&](std::int64_t first, std::int64_t last) {
-        for (std::int64_t y = first; y < last; ++y) {
-          for (int x = r.x0; x < r.x1; ++x) {
-            const int i = x + n * int(y);
-            const int prev = along_x ? (x > 0 ? i - 1 : i) : (y > 0 ? i - n : i);
-            const int next = along_x ? (x + 1 < n ? i + 1 : i) : (y + 1 < n ? i + n : i);
-            const vec4 c = buffer[std::size_t(i)], a = buffer[std::size_t(prev)], b = buffer[std::size_t(next)];
-            const vec3 out = (1.0f - 2.0f * w) * vec3(c.y, c.z, c.w) + w * (vec3(a.y, a.z, a.w) + vec3(b.y, b.z, b.w));
-            scratch[std::size_t(i)] = vec4(c.x, out);
-          }
-        }
-      });
-      for (int y = r.y0; y < r.y1; ++y) {
-        std::copy(scratch.begin() + (r.x0 + n * y), scratch.begin() + (r.x1 + n * y), buffer.begin() + (r.x0 + n * y));
-      }
-    }
-  };
-  if (r.x1 <= r.x0 || r.y1 <= r.y0) return;
-  blur_axis(true, variance.x);
-  blur_axis(false, variance.y);
 }
 
 // The automatic light buffer size: Kniss et al.'s (the eye buffer's larger
@@ -286,7 +246,7 @@ void HalfAngleRenderer::render(const Scene& scene, Image& image, RenderStats* st
 
     with_sampler(view.volume, [&](const auto& sampler) {
       vec3 polygon[12];
-      Rect lit_area{n, n, 0, 0};  // texels some slice has attenuated, and where the blur spread them
+      TexelRect lit_area{n, n, 0, 0};  // texels some slice has attenuated, and where the blur spread them
       for (int k = 0; k < slices.count; ++k) {
         shade_planes(k);
         const int corners = slice_polygon(view.box, s, slices.position(k), polygon);
@@ -314,11 +274,9 @@ void HalfAngleRenderer::render(const Scene& scene, Image& image, RenderStats* st
           }
           samples.fetch_add(count, std::memory_order_relaxed);
         });
-        if (lr.x0 < lr.x1 && lr.y0 < lr.y1) {
-          lit_area = Rect{std::min(lit_area.x0, lr.x0), std::min(lit_area.y0, lr.y0), std::max(lit_area.x1, lr.x1),
-                          std::max(lit_area.y1, lr.y1)};
+        if (scattering.has_diffuse()) {
+          blur_after_slice(light_, blur_, n, TexelRect{lr.x0, lr.y0, lr.x1, lr.y1}, lit_area, variance);
         }
-        if (scattering.has_diffuse()) blur_diffuse(light_, blur_, n, lit_area, variance);
       }
       shade_planes(slices.count);
       return 0;

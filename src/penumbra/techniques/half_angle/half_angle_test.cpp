@@ -9,6 +9,7 @@
 #include "penumbra/analysis/image_metrics.h"
 #include "penumbra/base/error.h"
 #include "penumbra/io/scene_json.h"
+#include "penumbra/techniques/half_angle/diffuse_blur.h"
 #include "penumbra/techniques/half_angle/slice_geometry.h"
 #include "penumbra/techniques/registry.h"
 #include "test_scene.h"
@@ -129,6 +130,57 @@ TEST(HalfAngle, BuildsLightRaysOncePerLightAndChecksTheBufferSizeInPrepare) {
   } catch (const InvalidArgument& e) {
     EXPECT_EQ(e.name(), "light_buffer_size");
   }
+}
+
+// The diffuse blur after each slice covers every texel the light has
+// reached, which is the same as blurring the whole buffer: a dark patch at
+// the buffer's edge, attenuated by the first slice, keeps spreading while the
+// second slice lies across the buffer from it. Against a brute-force blur of
+// the whole buffer, pass for pass. (Blurring only the slice's rectangle, as
+// half-angle did before issue 21, leaves the patch as the first slice left
+// it: max difference 0.27.)
+TEST(HalfAngle, DiffuseBlurCoversTheWholeBuffer) {
+  const int n = 16;
+  std::vector<vec4> buffer(std::size_t(n * n), vec4(1.0f));
+  for (int y = 6; y < 10; ++y) buffer[std::size_t(n * y)] = vec4(1.0f, 0.2f, 0.3f, 0.4f);  // column 0
+  std::vector<vec4> expected = buffer;
+  auto blur_all = [&](vec2 variance) {  // the same binomial passes over every texel
+    for (int axis = 0; axis < 2; ++axis) {
+      const int passes = int(std::ceil(variance[axis] / 0.5f));
+      const float w = variance[axis] / (2.0f * float(passes));
+      for (int pass = 0; pass < passes; ++pass) {
+        std::vector<vec4> out = expected;
+        for (int y = 0; y < n; ++y) {
+          for (int x = 0; x < n; ++x) {
+            const ivec2 step = axis == 0 ? ivec2(1, 0) : ivec2(0, 1);
+            const ivec2 a = glm::clamp(ivec2(x, y) - step, ivec2(0), ivec2(n - 1));
+            const ivec2 b = glm::clamp(ivec2(x, y) + step, ivec2(0), ivec2(n - 1));
+            const vec4 c = expected[std::size_t(x + n * y)];
+            const vec4 sum = (1.0f - 2.0f * w) * c + w * (expected[std::size_t(a.x + n * a.y)] +
+                                                          expected[std::size_t(b.x + n * b.y)]);
+            out[std::size_t(x + n * y)] = vec4(c.x, sum.y, sum.z, sum.w);
+          }
+        }
+        expected = out;
+      }
+    }
+  };
+  std::vector<vec4> scratch(buffer.size());
+  TexelRect lit{n, n, 0, 0};
+  const vec2 variance(0.8f, 0.6f);
+  blur_after_slice(buffer, scratch, n, TexelRect{0, 4, 4, 12}, lit, variance);  // over the patch
+  blur_all(variance);
+  for (int k = 0; k < 3; ++k) {
+    blur_after_slice(buffer, scratch, n, TexelRect{10, 0, 16, 16}, lit, variance);  // across the buffer
+    blur_all(variance);
+  }
+  float error = 0.0f;
+  for (std::size_t i = 0; i < buffer.size(); ++i) {
+    error = std::max(error, max_component(glm::abs(buffer[i] - expected[i])));
+  }
+  std::printf("diffuse blur against the whole buffer's: max difference %.3g\n", error);
+  EXPECT_LT(error, 1e-6f);
+  EXPECT_GT(1.0f - expected[std::size_t(3 + n * 5)].y, 0.01f) << "the test needs the patch to have spread";
 }
 
 // Fig. 8 of Sundén et al.: ipsvi and half-angle slicing look alike. Same

@@ -50,11 +50,13 @@ std::vector<vec2> initial_cache_state(const LightCacheProjection& projection, co
   return state;
 }
 
-void IlluminationCache::allocate(int size, bool diffuse) {
+void IlluminationCache::allocate(int size, bool diffuse, bool colored) {
   const std::uint64_t texels = std::uint64_t(size) * std::uint64_t(size);
+  const int stride = colored ? IlluminationCacheView::kColorSums : IlluminationCacheView::kSums;
   const std::uint64_t per_texel = sizeof(vec2) + (diffuse ? sizeof(vec4) : 0) +
-                                  IlluminationCacheView::kSums * sizeof(std::uint64_t) + sizeof(std::uint32_t) +
-                                  sizeof(CachedLight);
+                                  (colored ? sizeof(vec4) + sizeof(vec3) : 0) +
+                                  std::uint64_t(stride) * sizeof(std::uint64_t) + sizeof(std::uint32_t) +
+                                  sizeof(Staged);
   check_memory_budget("ipsvi illumination cache", checked_product({texels, per_texel}));
   size_ = size;
   state_.assign(texels, vec2(1.0f, 0.0f));
@@ -64,15 +66,24 @@ void IlluminationCache::allocate(int size, bool diffuse) {
     diffuse_.clear();
     diffuse_.shrink_to_fit();
   }
-  sums_.assign(texels * IlluminationCacheView::kSums, 0u);
+  if (colored) {
+    color_.assign(texels, vec4(1.0f));
+  } else {
+    color_.clear();
+    color_.shrink_to_fit();
+  }
+  sums_.assign(texels * std::uint64_t(stride), 0u);
   touched_.assign(texels, 0u);
   touched_count_ = 0;
   staged_.resize(texels);
+  staged_color_.resize(colored ? texels : 0);
+  staged_color_.shrink_to_fit();
 }
 
 void IlluminationCache::reset(const std::vector<vec2>& initial) {
   std::copy(initial.begin(), initial.end(), state_.begin());
   std::fill(diffuse_.begin(), diffuse_.end(), vec4(1.0f));
+  std::fill(color_.begin(), color_.end(), vec4(1.0f));
 }
 
 IlluminationCacheView IlluminationCache::view(float max_depth) {
@@ -81,6 +92,7 @@ IlluminationCacheView IlluminationCache::view(float max_depth) {
   v.size = size_;
   v.state = state_.data();
   v.diffuse = diffuse_.empty() ? nullptr : diffuse_.data();
+  v.color = color_.empty() ? nullptr : color_.data();
   v.sums = sums_.data();
   v.touched = touched_.data();
   v.touched_count = &touched_count_;
@@ -89,8 +101,10 @@ IlluminationCacheView IlluminationCache::view(float max_depth) {
 }
 
 std::uint64_t IlluminationCache::bytes() const {
-  return state_.size() * sizeof(vec2) + diffuse_.size() * sizeof(vec4) + sums_.size() * sizeof(std::uint64_t) +
-         touched_.size() * sizeof(std::uint32_t) + staged_.size() * sizeof(CachedLight);
+  return state_.size() * sizeof(vec2) + (diffuse_.size() + color_.size()) * sizeof(vec4) +
+         sums_.size() * sizeof(std::uint64_t) +
+         touched_.size() * sizeof(std::uint32_t) + staged_.size() * sizeof(Staged) +
+         staged_color_.size() * sizeof(vec3);
 }
 
 }  // namespace penumbra

@@ -22,22 +22,27 @@
 namespace penumbra {
 
 // What a sample reads from the cache: transmittance of the direct light, of
-// the diffuse (forward-scattered) light, and the depth where they hold.
+// the diffuse (forward-scattered) light, and the depth where they hold; with
+// the paper's light model (light_model.h) also the direct light's colour,
+// Eq. 3's I_ss relative to the light's (`direct` is then unused).
 struct CachedLight {
   float direct = 1.0f;
   float depth = 0.0f;
   vec3 diffuse{1.0f};
+  vec3 color{1.0f};
 };
 
 struct IlluminationCacheView {
   static constexpr int kSums = 6;  // weight, direct, depth, diffuse rgb
+  static constexpr int kColorSums = 9;  // the same and the direct light's rgb (paper's light model)
   static constexpr float kValueScale = 16777216.0f;  // 2^24: fixed-point unit of a value in [0, 1]
   static constexpr float kWeightScale = 65536.0f;    // 2^16
 
   int size = 0;
   const vec2* state = nullptr;    // per texel: (direct transmittance, depth)
   const vec4* diffuse = nullptr;  // per texel: diffuse transmittance (rgb); null without the diffuse part
-  std::uint64_t* sums = nullptr;  // kSums per texel: the writes of the current block
+  const vec4* color = nullptr;    // per texel: the direct light's rgb; null but with the paper's light model
+  std::uint64_t* sums = nullptr;  // kSums (kColorSums with colour) per texel: the writes of the current block
   std::uint32_t* touched = nullptr;
   std::uint32_t* touched_count = nullptr;
   float max_depth = 1.0f;
@@ -106,10 +111,11 @@ struct IlluminationCacheView {
   // Adds one write (the weighted mean of a run of samples in one texel, with
   // its total weight) to the block's sums. Writes that would move the texel's
   // value back toward the light are dropped: the cache only advances.
-  PENUMBRA_HD void write(int texel, float weight, float direct, float depth, vec3 diffuse_light) const {
+  PENUMBRA_HD void write(int texel, float weight, float direct, float depth, vec3 diffuse_light,
+                         vec3 color_light = vec3(1.0f)) const {
     if (!(weight > 0.0f) || !(depth > state[texel].y)) return;
     const std::uint64_t w = std::uint64_t(weight * kWeightScale) + 1u;
-    std::uint64_t* s = sums + std::int64_t(texel) * kSums;
+    std::uint64_t* s = sums + std::int64_t(texel) * (color ? kColorSums : kSums);
     if (fetch_add(s[0], w) == 0u) touched[fetch_add32(*touched_count, 1u)] = std::uint32_t(texel);
     fetch_add(s[1], w * quantize(direct));
     fetch_add(s[2], w * quantize(depth / max_depth));
@@ -118,6 +124,21 @@ struct IlluminationCacheView {
       fetch_add(s[4], w * quantize(diffuse_light.g));
       fetch_add(s[5], w * quantize(diffuse_light.b));
     }
+    if (color) {
+      fetch_add(s[6], w * quantize(color_light.r));
+      fetch_add(s[7], w * quantize(color_light.g));
+      fetch_add(s[8], w * quantize(color_light.b));
+    }
+  }
+
+  // The direct light's colour at uv (bilinear; covered), paper's model only.
+  PENUMBRA_HD vec3 color_at(vec2 uv) const {
+    int x0, y0, x1, y1;
+    float fx, fy;
+    corners(uv, x0, y0, x1, y1, fx, fy);
+    const vec3 a(color[x0 + size * y0]), b(color[x1 + size * y0]);
+    const vec3 c(color[x0 + size * y1]), d(color[x1 + size * y1]);
+    return glm::mix(glm::mix(a, b, fx), glm::mix(c, d, fx), fy);
   }
 
  private:
@@ -161,8 +182,9 @@ std::vector<vec2> initial_cache_state(const LightCacheProjection& projection, co
 
 class IlluminationCache {
  public:
-  // Checks the memory budget; `diffuse` adds the forward-scattering channel.
-  void allocate(int size, bool diffuse);
+  // Checks the memory budget; `diffuse` adds the forward-scattering channel,
+  // `colored` the direct light's colour (the paper's light model).
+  void allocate(int size, bool diffuse, bool colored = false);
   // Starts a sweep from `initial` (see initial_cache_state).
   void reset(const std::vector<vec2>& initial);
   IlluminationCacheView view(float max_depth);
@@ -181,27 +203,39 @@ class IlluminationCache {
   float max_depth_ = 1.0f;
   std::vector<vec2> state_;
   std::vector<vec4> diffuse_;
+  std::vector<vec4> color_;
   std::vector<std::uint64_t> sums_;
   std::vector<std::uint32_t> touched_;
   std::uint32_t touched_count_ = 0;
-  std::vector<CachedLight> staged_;  // resolve(): the new light of each touched texel
+  struct Staged {
+    float direct, depth;
+    vec3 diffuse;
+  };
+  std::vector<Staged> staged_;       // resolve(): the new light of each touched texel
+  std::vector<vec3> staged_color_;  // and its colour (paper's light model)
 };
 
 template <class Advance> void IlluminationCache::resolve(const Advance& advance) {
   const std::int64_t count = touched_count_;
   const bool diffuse = !diffuse_.empty();
+  const bool colored = !color_.empty();
+  const int stride = colored ? IlluminationCacheView::kColorSums : IlluminationCacheView::kSums;
   parallel_for(
       0, count,
       [&](std::int64_t first, std::int64_t last) {
         for (std::int64_t i = first; i < last; ++i) {
           const std::uint32_t texel = touched_[std::size_t(i)];
-          std::uint64_t* s = sums_.data() + std::size_t(texel) * IlluminationCacheView::kSums;
+          std::uint64_t* s = sums_.data() + std::size_t(texel) * std::size_t(stride);
           const double w = double(s[0]) * IlluminationCacheView::kValueScale;
-          CachedLight stored{state_[texel].x, state_[texel].y, diffuse ? vec3(diffuse_[texel]) : vec3(1.0f)};
-          CachedLight written{float(double(s[1]) / w), float(double(s[2]) / w) * max_depth_, vec3(1.0f)};
+          CachedLight stored{state_[texel].x, state_[texel].y, diffuse ? vec3(diffuse_[texel]) : vec3(1.0f),
+                             colored ? vec3(color_[texel]) : vec3(1.0f)};
+          CachedLight written{float(double(s[1]) / w), float(double(s[2]) / w) * max_depth_, vec3(1.0f), vec3(1.0f)};
           if (diffuse) written.diffuse = vec3(float(double(s[3]) / w), float(double(s[4]) / w), float(double(s[5]) / w));
-          staged_[std::size_t(i)] = written.depth > stored.depth ? advance(int(texel), stored, written) : stored;
-          std::fill(s, s + IlluminationCacheView::kSums, 0u);
+          if (colored) written.color = vec3(float(double(s[6]) / w), float(double(s[7]) / w), float(double(s[8]) / w));
+          const CachedLight c = written.depth > stored.depth ? advance(int(texel), stored, written) : stored;
+          staged_[std::size_t(i)] = Staged{c.direct, c.depth, c.diffuse};
+          if (colored) staged_color_[std::size_t(i)] = c.color;
+          std::fill(s, s + stride, 0u);
         }
       },
       64);
@@ -210,9 +244,10 @@ template <class Advance> void IlluminationCache::resolve(const Advance& advance)
       [&](std::int64_t first, std::int64_t last) {
         for (std::int64_t i = first; i < last; ++i) {
           const std::uint32_t texel = touched_[std::size_t(i)];
-          const CachedLight& c = staged_[std::size_t(i)];
+          const Staged& c = staged_[std::size_t(i)];
           state_[texel] = vec2(c.direct, c.depth);
           if (diffuse) diffuse_[texel] = vec4(c.diffuse, 1.0f);
+          if (colored) color_[texel] = vec4(staged_color_[std::size_t(i)], 1.0f);
         }
       },
       256);

@@ -15,6 +15,7 @@ class Ipsvi final : public Technique {
     s.cache_size = params.integer("cache_size");
     s.piecewise_integration = params.flag("piecewise_integration");
     s.early_termination = params.flag("early_termination");
+    s.light_model = params.choice("light_model") == "paper" ? IpsviLightModel::Paper : IpsviLightModel::Grey;
     renderer_.prepare(scene, s);
   }
 
@@ -45,6 +46,10 @@ TechniqueInfo ipsvi_info() {
                               "march light segments back to the previous cache plane (else one step per sample)"),
           ParameterSpec::flag("early_termination", false,
                               "ERT extension: a low-resolution pre-pass finds where each ray may stop"),
+          ParameterSpec::choice("light_model", "grey", {"grey", "paper"},
+                                "grey: a grey transmittance and one albedo (shadow-rays' model); paper: Eq. 3's light "
+                                "coloured by the medium it crosses, a(s) = albedo x the sample's scattering albedo, "
+                                "cone-mean phase for the scattered part"),
       }},
       [] { return std::make_unique<Ipsvi>(); }};
 }

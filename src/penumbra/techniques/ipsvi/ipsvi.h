@@ -24,6 +24,10 @@
 //   piecewise_integration  march the light segment back to the previous cache
 //                          plane (4.4) instead of compositing one step
 //   early_termination      the ERT extension of 5.1
+//   light_model            grey (the default: shadow-rays' grey
+//                          transmittance, one global albedo) or paper (Eq. 3's
+//                          light coloured by the medium it crosses, a(s) per
+//                          sample, the cone-mean phase): light_model.h
 // Passes
 //   prepare: per light, the cache projection fitted to the camera frustum's
 //            intersection with the volume box (5.2, cache_fit.h) and the

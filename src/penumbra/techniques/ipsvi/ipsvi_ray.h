@@ -29,6 +29,7 @@
 #include "penumbra/techniques/ipsvi/forward_scattering.h"
 #include "penumbra/techniques/ipsvi/illumination_cache.h"
 #include "penumbra/techniques/ipsvi/light_cache_projection.h"
+#include "penumbra/techniques/ipsvi/light_model.h"
 #include "penumbra/techniques/ipsvi/light_segment.h"
 
 #include <cstdint>
@@ -43,16 +44,26 @@ struct IpsviKernel {
   IlluminationCacheView cache;
   ForwardScattering scattering;
   bool piecewise = true;
+  // The paper's light model (light_model.h): the direct light's colour
+  // (the cache's colour channel), a(s) and the cone-mean phase.
+  bool paper = false;
+  ConePhase cone_phase;
 };
 
 struct IpsviRayCounts {
   std::uint64_t view_samples = 0;   // samples of the viewing rays
   std::uint64_t light_samples = 0;  // samples of piecewise-integration segments
+  std::uint64_t exact_plane_rays = 0;  // plane hits on a shadow edge that marched their own light ray
 };
 
 // Below this sine of the angle between the light and the viewing ray a
 // sample continues the previous sample's light (ipsvi_light_at).
 inline constexpr float kAlongRaySine = 0.1f;
+
+// A plane hit whose four cache texels, each continued to it, differ by more
+// than this in transmittance lies on a shadow edge; it marches its own light
+// ray to the box instead (plane_light). Measured in docs/ipsvi.md.
+inline constexpr float kPlaneEdgeSpread = 0.02f;
 
 // What one ray remembers between its samples.
 struct RayCacheState {
@@ -61,12 +72,14 @@ struct RayCacheState {
   int texel = -1;
   float depth = 0.0f;
   float direct = 1.0f;
+  vec3 color{1.0f};
   // The open run of samples in one texel: weighted sums.
   int run_texel = -1;
   float run_weight = 0.0f;
   float run_direct = 0.0f;
   float run_depth = 0.0f;
   vec3 run_diffuse{0.0f};
+  vec3 run_color{0.0f};
 };
 
 // Ray parameter of the light's closest approach to the ray; for a light at
@@ -83,15 +96,18 @@ PENUMBRA_HD inline float light_parameter(const Light& light, const Ray& ray) {
 PENUMBRA_HD inline void flush_run(const IpsviKernel& k, RayCacheState& st) {
   if (st.run_texel >= 0 && st.run_weight > 0.0f) {
     const float inv = 1.0f / st.run_weight;
-    k.cache.write(st.run_texel, st.run_weight, st.run_direct * inv, st.run_depth * inv, st.run_diffuse * inv);
+    k.cache.write(st.run_texel, st.run_weight, st.run_direct * inv, st.run_depth * inv, st.run_diffuse * inv,
+                  st.run_color * inv);
   }
   st.run_texel = -1;
   st.run_weight = st.run_direct = st.run_depth = 0.0f;
-  st.run_diffuse = vec3(0.0f);
+  st.run_diffuse = st.run_color = vec3(0.0f);
 }
 
 // The light reaching world point p (projection proj = (u, v, depth)), whose
-// own extinction is `sigma` with TF colour `color` (the shadow TF's).
+// own extinction is `sigma` with TF colour `color` (the shadow TF's). With
+// the paper's light model the direct light's colour (Eq. 3) is carried
+// beside the grey transmittance, through the same segments.
 //
 // The four texels around p were written at different depths (different
 // lines); each is continued from its own depth to p's, with one march back
@@ -99,25 +115,31 @@ PENUMBRA_HD inline void flush_run(const IpsviKernel& k, RayCacheState& st) {
 // before they are blended. (Blending the depths instead would let a texel
 // written far behind p lend its shorter segment to one written before the
 // structure p sits in.) Texels already ahead of p are left out.
+// `spread`, when given, receives the largest difference between the texels'
+// direct light once continued to p (0 for one texel).
 template <class Sampler>
 PENUMBRA_HD CachedLight ipsvi_light_at(const IpsviKernel& k, const Sampler& sampler, vec3 p, vec3 proj, float sigma,
-                                       vec3 color, RayCacheState& st, IpsviRayCounts& counts) {
+                                       vec3 color, RayCacheState& st, IpsviRayCounts& counts,
+                                       float* spread = nullptr) {
   const RenderView& v = *k.view;
   const ForwardScattering& fs = k.scattering;
   const vec2 uv(proj);
   const float here = proj.z;
-  if (!k.cache.covers(uv)) return CachedLight{1.0f, here, vec3(1.0f)};  // outside the cache: nothing in the way
+  // Outside the cache: nothing in the way.
+  if (!k.cache.covers(uv)) return CachedLight{1.0f, here, vec3(1.0f), vec3(1.0f)};
   const int texel = k.cache.texel_index(uv);
   int taps[4];
   float weights[4];
   k.cache.taps(uv, taps, weights);
   float base_direct[5], lengths[5];
+  vec3 base_color[5];
   float weight_sum = 0.0f, mean_depth = 0.0f, newest = -kInfinity;
   int n = 0;
   for (int i = 0; i < 4; ++i) {
     const vec2 t = k.cache.state[taps[i]];
     if (!(weights[i] > 0.0f) || t.y > here) continue;
     base_direct[n] = t.x;
+    if (k.paper) base_color[n] = vec3(k.cache.color[taps[i]]);
     lengths[n] = here - t.y;
     weights[n] = weights[i];
     weight_sum += weights[i];
@@ -128,6 +150,7 @@ PENUMBRA_HD CachedLight ipsvi_light_at(const IpsviKernel& k, const Sampler& samp
   if (n == 0) {  // every texel is ahead of p: take them as they are
     const CachedLight c = k.cache.read(uv, false);
     base_direct[0] = c.direct;
+    if (k.paper) base_color[0] = k.cache.color_at(uv);
     lengths[0] = 0.0f;
     weights[0] = weight_sum = 1.0f;
     mean_depth = newest = here;
@@ -145,6 +168,7 @@ PENUMBRA_HD CachedLight ipsvi_light_at(const IpsviKernel& k, const Sampler& samp
   const bool along_ray = glm::length(glm::cross(ls.to_light, st.ray_direction)) < kAlongRaySine;
   if (along_ray && !fs.has_diffuse() && st.texel == texel && st.depth > newest && st.depth <= here) {
     base_direct[0] = st.direct;
+    base_color[0] = st.color;
     lengths[0] = here - st.depth;
     weights[0] = weight_sum = 1.0f;
     n = 1;
@@ -154,13 +178,22 @@ PENUMBRA_HD CachedLight ipsvi_light_at(const IpsviKernel& k, const Sampler& samp
   const int checkpoints = fs.has_diffuse() ? n + 1 : n;
   OpticalDepth tau[5];
   if (k.piecewise) {
-    light_segment_depths(*k.shadow, sampler, p, ls.to_light, lengths, checkpoints, fs, tau, counts.light_samples);
+    if (k.paper) {
+      light_segment_depths<true>(*k.shadow, sampler, p, ls.to_light, lengths, checkpoints, fs, tau,
+                                 counts.light_samples);
+    } else {
+      light_segment_depths(*k.shadow, sampler, p, ls.to_light, lengths, checkpoints, fs, tau, counts.light_samples);
+    }
   } else {
     const vec3 ext = fs.has_diffuse() ? fs.diffuse_extinction(color, sigma) : vec3(0.0f);
     for (int i = 0; i < checkpoints; ++i) {
       const float length = glm::min(lengths[i], v.step);
       tau[i].direct = sigma * length;
       tau[i].diffuse = ext * length;
+      // Listing 4.1: the sample's own colour composited into the light.
+      if (k.paper) {
+        tau[i].emitted = (1.0f - exp_nonpositive(-tau[i].direct)) * glm::clamp(color, vec3(0.0f), vec3(1.0f));
+      }
     }
   }
   CachedLight out;
@@ -168,6 +201,22 @@ PENUMBRA_HD CachedLight ipsvi_light_at(const IpsviKernel& k, const Sampler& samp
   out.direct = 0.0f;
   for (int i = 0; i < n; ++i) out.direct += weights[i] * base_direct[i] * exp_nonpositive(-tau[i].direct);
   out.direct /= weight_sum;
+  if (spread) {
+    float lo = 1.0f, hi = 0.0f;
+    for (int i = 0; i < n; ++i) {
+      const float d = base_direct[i] * exp_nonpositive(-tau[i].direct);
+      lo = glm::min(lo, d);
+      hi = glm::max(hi, d);
+    }
+    *spread = glm::max(hi - lo, 0.0f);
+  }
+  if (k.paper) {
+    out.color = vec3(0.0f);
+    for (int i = 0; i < n; ++i) {
+      out.color += weights[i] * (base_color[i] * exp_nonpositive(-tau[i].direct) + tau[i].emitted);
+    }
+    out.color /= weight_sum;
+  }
   if (fs.has_diffuse()) {
     const vec2 spread = glm::sqrt(lengths[diffuse_slot] * fs.spread_per_length) / k.projection.texel_world_size(here);
     const vec3 t = tau[diffuse_slot].diffuse;
@@ -177,7 +226,45 @@ PENUMBRA_HD CachedLight ipsvi_light_at(const IpsviKernel& k, const Sampler& samp
   st.texel = texel;
   st.depth = out.depth;
   st.direct = out.direct;
+  st.color = out.color;
   return out;
+}
+
+// The visibility V the shading takes for light `light` at p, seen along
+// ray_dir: the grey model's blend by the global albedo, or the paper's by
+// a(s) per channel, `albedo` (light_model.h: the sample's, or the albedo
+// parameter for a plane), with the cone-mean phase for the diffuse part
+// (`phase`: false for a plane or Phong shading, whose factor is no phase).
+PENUMBRA_HD inline vec3 ipsvi_visibility(const IpsviKernel& k, const CachedLight& light, vec3 albedo, vec3 p,
+                                         vec3 ray_dir, bool phase) {
+  if (!k.paper) return k.scattering.visibility(light.direct, light.diffuse);
+  if (!k.scattering.has_diffuse()) return light.color;
+  const float ratio = phase ? k.cone_phase.at(glm::dot(sample_light(k.view->lights[0], p).to_light, ray_dir)) : 1.0f;
+  return paper_visibility(light.color, light.diffuse, albedo, ratio);
+}
+
+// The light reaching plane hit q. A floor far below the volume reads texels
+// whose light rays pass up to a texel (up to 4 along the view, cache_fit.h)
+// beside its own, written after the occluders: across a shadow edge the
+// bilinear read spreads the edge over that footprint, seen as a one-texel
+// bright line along the shadow's inside (issue 21). Where the four texels
+// disagree (kPlaneEdgeSpread) q's own light ray is marched to the box
+// instead, as shadow-rays does; the diffuse part stays the cache's.
+template <class Sampler>
+PENUMBRA_HD CachedLight plane_light(const IpsviKernel& k, const Sampler& sampler, vec3 q, RayCacheState& st,
+                                    IpsviRayCounts& counts) {
+  float spread = 0.0f;
+  CachedLight light = ipsvi_light_at(k, sampler, q, k.projection.project(q), 0.0f, vec3(0.0f), st, counts, &spread);
+  if (!k.piecewise || !(spread > kPlaneEdgeSpread)) return light;
+  const LightSample ls = sample_light(k.view->lights[0], q);
+  std::uint64_t& samples = counts.light_samples;
+  const OpticalDepth tau =
+      k.paper ? light_segment_depth<true>(*k.shadow, sampler, q, ls.to_light, ls.distance, k.scattering, samples)
+              : light_segment_depth(*k.shadow, sampler, q, ls.to_light, ls.distance, k.scattering, samples);
+  light.direct = exp_nonpositive(-tau.direct);
+  light.color = vec3(light.direct) + tau.emitted;
+  ++counts.exact_plane_rays;
+  return light;
 }
 
 // Adds a sample at cache position uv and depth to the ray's run for its
@@ -197,6 +284,7 @@ PENUMBRA_HD inline void add_to_run(const IpsviKernel& k, vec2 uv, float depth, c
   st.run_depth += w * depth;
   st.run_direct += w * light.direct;
   st.run_diffuse += w * light.diffuse;
+  if (k.paper) st.run_color += w * light.color;
 }
 
 // Marches samples of [ta, tb] along `ray` away from the light: front to back
@@ -237,7 +325,8 @@ PENUMBRA_HD void ipsvi_march(const IpsviKernel& k, const Sampler& sampler, const
         light = ipsvi_light_at(k, sampler, p, proj, cs.a, vec3(cs), st, counts);
         lit = true;
       }
-      return k.scattering.visibility(light.direct, light.diffuse);
+      return ipsvi_visibility(k, light, paper_albedo(k.scattering.blend, v.material.albedo, vec3(c)), p,
+                              ray.direction, v.material.shading == Shading::Phase);
     };
     if (!k.piecewise) visibility();  // the run's write is made of the samples' light
     const float t_ray = forward ? t : tb - t;
@@ -286,8 +375,8 @@ PENUMBRA_HD vec4 trace_ipsvi_ray(const IpsviKernel& k, const Sampler& sampler, c
   if (!terminated) {
     if (plane >= 0) {
       const vec3 q = ray.at(t_plane);
-      const CachedLight light = ipsvi_light_at(k, sampler, q, k.projection.project(q), 0.0f, vec3(0.0f), st, counts);
-      const vec3 visibility = k.scattering.visibility(light.direct, light.diffuse);
+      const CachedLight light = plane_light(k, sampler, q, st, counts);
+      const vec3 visibility = ipsvi_visibility(k, light, vec3(k.scattering.blend), q, ray.direction, false);
       color += transmittance *
                ScatteringLighting<FixedVisibility>{&v, {visibility}, v.material.shading}.plane(
                    PlaneHit{q, plane, ray.direction});

@@ -9,6 +9,12 @@
 // One march can report the optical depth at several lengths ("checkpoints"):
 // a sample reading four cache texels written at four depths needs the
 // segment back to each of them.
+//
+// With Emission (the paper's light model, light_model.h) it also reports
+// the colour the stretch adds to the light, Eq. 3's integral
+// T(s', from) tau(s') c(s') ds' over it: the segments' TF colours composited
+// front to back as seen from `from`, so that the light at `from` is
+// exp(-direct) times the light at the far end plus `emitted`.
 #include "penumbra/render/march.h"
 #include "penumbra/techniques/ipsvi/forward_scattering.h"
 
@@ -23,6 +29,7 @@ namespace penumbra {
 struct OpticalDepth {
   float direct = 0.0f;  // integral of sigma_t
   vec3 diffuse{0.0f};   // integral of the diffuse part's extinction (forward_scattering.h)
+  vec3 emitted{0.0f};   // with emission: the colour the stretch adds to the light (Eq. 3)
 };
 
 // Segments up to this many steps are marched sample by sample; longer ones
@@ -33,7 +40,9 @@ inline constexpr int kDirectSegmentSteps = 8;
 // depth[i] = optical depth over [0, lengths[i]] from `from` along `to_light`
 // (count <= 8). A checkpoint inside a segment of the march gets the part of
 // that segment before it.
-template <class Sampler>
+// (Emission is a template parameter so that the grey model's march stays
+// the code it was, to the bit.)
+template <bool Emission = false, class Sampler>
 PENUMBRA_HD void light_segment_depths(const RenderView& v, const Sampler& sampler, vec3 from, vec3 to_light,
                                       const float* lengths, int count, const ForwardScattering& scattering,
                                       OpticalDepth* depth, std::uint64_t& samples) {
@@ -66,12 +75,19 @@ PENUMBRA_HD void light_segment_depths(const RenderView& v, const Sampler& sample
     const vec4 c = Sampler::kAlwaysFinite ? tf.lookup_finite(value) : tf.lookup(value);
     const float start = grid.start(k), end = start + grid.length(k);
     const vec3 ext = diffuse ? scattering.diffuse_extinction(vec3(c), c.a) : vec3(0.0f);
+    // Emission: what reaches `from` of the colour of [start, start + part].
+    auto emitted = [&](float part) {
+      return (exp_nonpositive(-total.direct) * (1.0f - exp_nonpositive(-c.a * part))) *
+             glm::clamp(vec3(c), vec3(0.0f), vec3(1.0f));
+    };
     while (next < count && lengths[order[next]] < end) {
       const float part = glm::max(lengths[order[next]] - start, 0.0f);
       depth[order[next]].direct = total.direct + c.a * part;
       depth[order[next]].diffuse = total.diffuse + ext * part;
+      if constexpr (Emission) depth[order[next]].emitted = total.emitted + emitted(part);
       ++next;
     }
+    if constexpr (Emission) total.emitted += emitted(end - start);
     total.direct += c.a * (end - start);
     total.diffuse += ext * (end - start);
     return diffuse || total.direct < kMaxOpticalDepth;
@@ -90,12 +106,12 @@ PENUMBRA_HD void light_segment_depths(const RenderView& v, const Sampler& sample
   samples += taken;
 }
 
-template <class Sampler>
+template <bool Emission = false, class Sampler>
 PENUMBRA_HD OpticalDepth light_segment_depth(const RenderView& v, const Sampler& sampler, vec3 from, vec3 to_light,
                                              float length, const ForwardScattering& scattering,
                                              std::uint64_t& samples) {
   OpticalDepth depth;
-  light_segment_depths(v, sampler, from, to_light, &length, 1, scattering, &depth, samples);
+  light_segment_depths<Emission>(v, sampler, from, to_light, &length, 1, scattering, &depth, samples);
   return depth;
 }
 

@@ -76,9 +76,10 @@ void IpsviRenderer::prepare(const Scene& scene, const IpsviSettings& settings) {
   const SceneVersions& v = scene.versions();
   std::vector<LightCacheProjection> fits = fit_ipsvi_caches(scene, settings);
   const int cache_size = fits.empty() ? 16 : fits.front().size;
-  const bool diffuse_changed = (settings.albedo > 0.0f) != (settings_.albedo > 0.0f);
+  const bool channels_changed = (settings.albedo > 0.0f) != (settings_.albedo > 0.0f) ||
+                                settings.light_model != settings_.light_model;
   const bool stale = !built_ || v.lights != lights_version_ || v.geometry != geometry_version_ ||
-                     v.data != data_version_ || settings.cache_size != settings_.cache_size || diffuse_changed;
+                     v.data != data_version_ || settings.cache_size != settings_.cache_size || channels_changed;
   bool refit = stale || fits.size() != lights_.size();
   for (std::size_t i = 0; !refit && i < fits.size(); ++i) refit = !same_projection(fits[i], lights_[i].projection);
   settings_ = settings;
@@ -99,7 +100,9 @@ void IpsviRenderer::prepare(const Scene& scene, const IpsviSettings& settings) {
     lc.initial = initial_cache_state(lc.projection, box, scene.clip_planes());
     ++i;
   }
-  if (cache_size != cache_.size() || stale) cache_.allocate(cache_size, settings.albedo > 0.0f);
+  if (cache_size != cache_.size() || stale) {
+    cache_.allocate(cache_size, settings.albedo > 0.0f, settings.light_model == IpsviLightModel::Paper);
+  }
   lights_version_ = v.lights;
   geometry_version_ = v.geometry;
   data_version_ = v.data;
@@ -126,11 +129,13 @@ void IpsviRenderer::render(const Scene& scene, Image& image, RenderStats* stats)
   const ForwardScattering scattering =
       make_forward_scattering(settings_.albedo, settings_.cone_angle_deg, view.material.phase_g,
                               view.material.albedo, view.volume.min_spacing());
+  const bool paper = settings_.light_model == IpsviLightModel::Paper;
+  const ConePhase cone_phase = paper ? make_cone_phase(view.material.phase_g, settings_.cone_angle_deg) : ConePhase{};
   const PixelRect image_rect{0, 0, width, height};
   const PixelRect volume_rect = projected_box_rect(view.camera, width, height, view.box);
   // Planes need every pixel: a floor outside the volume's footprint may lie in its shadow.
   const PixelRect rect = view.plane_count > 0 ? image_rect : volume_rect;
-  std::atomic<std::uint64_t> view_samples{0}, light_samples{0}, write_samples{0};
+  std::atomic<std::uint64_t> view_samples{0}, light_samples{0}, write_samples{0}, exact_plane_rays{0};
   std::vector<BlockPixel> block;
 
   for (std::size_t li = 0; li < lights_.size(); ++li) {
@@ -163,12 +168,15 @@ void IpsviRenderer::render(const Scene& scene, Image& image, RenderStats* stats)
     kernel.projection = lc.projection;
     kernel.scattering = scattering;
     kernel.piecewise = settings_.piecewise_integration;
+    kernel.paper = paper;
+    kernel.cone_phase = cone_phase;
 
     with_sampler(view.volume, [&](const auto& sampler) {
       // A written texel's new light: with piecewise integration its own light
       // ray (through the texel centre) marched from the stored depth to the
       // block's mean depth, and its diffuse part spread over that distance;
-      // without it the mean of the samples' light (Listing 4.1).
+      // without it the mean of the samples' light (Listing 4.1). With the
+      // paper's light model the colour the segment adds (Eq. 5) as well.
       //
       // Without the diffuse part the texel is carried only to kCacheTrailTexels
       // texel widths before the written depth: a sample then marches at least
@@ -190,12 +198,15 @@ void IpsviRenderer::render(const Scene& scene, Image& image, RenderStats* stats)
         }
         const float delta = target.depth - stored.depth;
         std::uint64_t samples = 0;
-        const OpticalDepth tau = light_segment_depth(lit_shadow, sampler, light_ray.at(target.depth),
-                                                     -light_ray.direction, delta, scattering, samples);
+        const vec3 from = light_ray.at(target.depth), to_light = -light_ray.direction;
+        const OpticalDepth tau =
+            kernel.paper ? light_segment_depth<true>(lit_shadow, sampler, from, to_light, delta, scattering, samples)
+                         : light_segment_depth(lit_shadow, sampler, from, to_light, delta, scattering, samples);
         write_samples.fetch_add(samples, std::memory_order_relaxed);
         CachedLight out;
         out.depth = target.depth;
         out.direct = stored.direct * exp_nonpositive(-tau.direct);
+        if (kernel.paper) out.color = stored.color * exp_nonpositive(-tau.direct) + tau.emitted;
         if (scattering.has_diffuse()) {
           const vec2 spread =
               std::sqrt(delta * scattering.spread_per_length) / kernel.projection.texel_world_size(target.depth);
@@ -239,6 +250,7 @@ void IpsviRenderer::render(const Scene& scene, Image& image, RenderStats* stats)
                 }
                 view_samples.fetch_add(counts.view_samples, std::memory_order_relaxed);
                 light_samples.fetch_add(counts.light_samples, std::memory_order_relaxed);
+                exact_plane_rays.fetch_add(counts.exact_plane_rays, std::memory_order_relaxed);
               },
               8);
           cache_.resolve(advance);
@@ -257,6 +269,7 @@ void IpsviRenderer::render(const Scene& scene, Image& image, RenderStats* stats)
   counts_.view_samples = view_samples.load();
   counts_.light_samples = light_samples.load();
   counts_.write_samples = write_samples.load();
+  counts_.exact_plane_rays = exact_plane_rays.load();
   if (stats) {
     stats->samples += counts_.view_samples;
     stats->rays += std::uint64_t(width) * std::uint64_t(height) * lights_.size();

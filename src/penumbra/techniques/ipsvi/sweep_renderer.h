@@ -23,6 +23,7 @@
 #include "penumbra/techniques/ipsvi/early_termination.h"
 #include "penumbra/techniques/ipsvi/illumination_cache.h"
 #include "penumbra/techniques/ipsvi/light_cache_projection.h"
+#include "penumbra/techniques/ipsvi/light_model.h"
 #include "penumbra/techniques/ipsvi/sweep_plan.h"
 
 #include <cstdint>
@@ -38,6 +39,7 @@ struct IpsviSettings {
   bool piecewise_integration = true;
   bool early_termination = false;
   float band_deg = 5.0f;        // zone-border blending (point lights)
+  IpsviLightModel light_model = IpsviLightModel::Grey;  // light_model.h
   bool operator==(const IpsviSettings&) const = default;
 };
 
@@ -46,6 +48,7 @@ struct IpsviFrameCounts {
   std::uint64_t light_samples = 0;    // piecewise-integration samples at the viewing-ray samples
   std::uint64_t write_samples = 0;    // piecewise-integration samples of cache writes
   std::uint64_t prepass_samples = 0;  // ERT extension pre-pass
+  std::uint64_t exact_plane_rays = 0;  // plane hits on a shadow edge that marched their own light ray
   std::uint64_t blocks = 0;           // blocks of lines processed (synchronisation points)
 };
 
@@ -65,8 +68,8 @@ class IpsviRenderer {
   void render(const Scene& scene, Image& image, RenderStats* stats = nullptr);
 
   std::uint64_t aux_bytes() const;
-  // Rebuilds: lights, data, clip planes, cache_size or the diffuse channel
-  // changed. Refits (rebuilds included): the cache was fitted anew, as after
+  // Rebuilds: lights, data, clip planes, cache_size, the diffuse channel or
+  // the light model changed. Refits (rebuilds included): the cache was fitted anew, as after
   // a camera move.
   std::uint64_t rebuilds() const { return rebuilds_; }
   std::uint64_t refits() const { return refits_; }
