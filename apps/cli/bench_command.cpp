@@ -6,10 +6,13 @@
 //                  degrees between frames (median and min of N)
 //   aux_bytes      the technique's own memory
 // plus samples_per_frame and samples_per_s (volume samples of viewing rays)
-// and passes_per_frame (convolution's slabs; 0 for techniques that do not sweep).
+// and passes_per_frame (convolution's slabs; 0 for techniques that do not sweep),
+// and lane_utilisation: samples over packet steps times lanes of the shared
+// loop's viewing rays (1 on the scalar path; 0 where no step was counted).
 #include "cli_common.h"
 #include "commands.h"
 
+#include "penumbra/backends/cpu/packets.h"
 #include "penumbra/base/error.h"
 #include "penumbra/base/parallel.h"
 #include "penumbra/render/change_timing.h"
@@ -61,13 +64,14 @@ void bench_technique(Scene scene, const TechniqueInfo& info, const BenchOptions&
       "\"tf_change_ms\": {:.3f}, \"light_move_ms\": {:.3f}, \"frame_ms_median\": {:.3f}, \"frame_ms_min\": {:.3f}, "
       "\"aux_bytes\": {}, \"threads\": {}, \"simd\": \"{}\", \"device\": \"{}\", \"samples_per_frame\": {}, \"samples_per_s\": {:.4g}, "
       "\"samples_per_s_per_thread\": {:.4g}, "
-      "\"passes_per_frame\": {}}}\n",
+      "\"passes_per_frame\": {}, \"lane_utilisation\": {:.3f}}}\n",
       info.name, volume, d.x, d.y, d.z, scene.render().width, scene.render().height, changes.tf_change_ms,
       changes.light_move_ms, median(frame_ms), *std::min_element(frame_ms.begin(), frame_ms.end()),
       technique->aux_bytes(), thread_count(), to_string(stats.simd), to_string(stats.device), stats.samples / std::uint64_t(options.frames),
       total_ms > 0.0 ? double(stats.samples) / (total_ms * 1e-3) : 0.0,
       total_ms > 0.0 ? double(stats.samples) / (total_ms * 1e-3) / thread_count() : 0.0,
-      stats.passes / std::uint64_t(options.frames));
+      stats.passes / std::uint64_t(options.frames),
+      stats.steps > 0 ? double(stats.samples) / (double(stats.steps) * double(simd_width(stats.simd))) : 0.0);
   std::fflush(stdout);
 }
 

@@ -26,3 +26,12 @@
 #else
 #define PENUMBRA_FORCE_INLINE_LAMBDA __attribute__((always_inline))
 #endif
+
+// Keeps a rarely taken path of a hot loop out of line on the CPU, so that
+// the loop's registers are not spent on (and shuffled for) the state only
+// that path touches; inlined as usual on the device.
+#if defined(__CUDA_ARCH__) || !(defined(__GNUC__) || defined(__clang__))
+#define PENUMBRA_COLD_PATH
+#else
+#define PENUMBRA_COLD_PATH __attribute__((noinline))
+#endif

@@ -67,6 +67,10 @@ template <class L> struct LaneWalk {
   M inside;  // false once a jump left the grid
   I cell[3], step[3];
   F t_next[3], t_delta[3];
+  // What depends only on the direction, set by start() and read by
+  // restart() and skip_empty() (recomputed there, it was hoisted into the
+  // packet loop's every step and spilled: issue 14).
+  M forward[3], backward[3];
 
   LaneWalk() = default;
   PENUMBRA_HD explicit LaneWalk(const RenderView& v)
@@ -75,6 +79,7 @@ template <class L> struct LaneWalk {
     for (int a = 0; a < 3; ++a) {
       cell[a] = step[a] = I(0);
       t_next[a] = t_delta[a] = F(kInfinity);
+      forward[a] = backward[a] = M(false);
     }
   }
 
@@ -85,7 +90,13 @@ template <class L> struct LaneWalk {
     dir = select(lanes, d, dir);
     for (int a = 0; a < 3; ++a) {
       const auto moving = d[a] != 0.0f;
-      inv_dir[a] = select(lanes, select(moving, 1.0f / select(moving, d[a], F(1.0f)), F(0.0f)), inv_dir[a]);
+      const F inv = select(moving, 1.0f / select(moving, d[a], F(1.0f)), F(0.0f));
+      inv_dir[a] = select(lanes, inv, inv_dir[a]);
+      const M ahead = d[a] > 0.0f, back = d[a] < 0.0f;
+      forward[a] = select(lanes, ahead, forward[a]);
+      backward[a] = select(lanes, back, backward[a]);
+      step[a] = select(lanes, select(ahead, I(1), select(back, I(-1), I(0))), step[a]);
+      t_delta[a] = select(lanes, select(ahead, size * inv, select(back, -size * inv, F(kInfinity))), t_delta[a]);
     }
     restart(lanes, t0);
   }
@@ -132,8 +143,8 @@ template <class L> struct LaneWalk {
                                        cells)) - I(1);
     F t_exit(kInfinity);
     for (int a = 0; a < 3; ++a) {
-      const F bound = select(dir[a] > 0.0f, to_float(cell[a] + radius + I(1)) * size, to_float(cell[a] - radius) * size);
-      t_exit = select(dir[a] != 0.0f, min(t_exit, (bound - origin[a]) * inv_dir[a]), t_exit);
+      const F bound = select(forward[a], to_float(cell[a] + radius + I(1)) * size, to_float(cell[a] - radius) * size);
+      t_exit = select(forward[a] | backward[a], min(t_exit, (bound - origin[a]) * inv_dir[a]), t_exit);
     }
     const M jump = lanes & !(radius < I(1)) & (t_exit > cell_exit());
     const M stepping = lanes & !jump;
@@ -155,21 +166,17 @@ template <class L> struct LaneWalk {
     for (int a = 0; a < 3; ++a) {
       F c = floor(p[a]);
       // On a cell boundary, belong to the cell the ray moves into.
-      c = select((dir[a] < 0.0f) & (c == p[a]), c - 1.0f, c);
+      c = select(backward[a] & (c == p[a]), c - 1.0f, c);
       I index = to_int(c);
       const M outside = (index < I(0)) | (index >= I(dims[a]));
       // Rounding at the grid border when entering: clamp; leaving: stop.
-      const M entering = (index < I(0)) == (dir[a] > 0.0f);
-      inside = select(lanes & outside & !entering & (dir[a] != 0.0f), M(false), inside);
+      const M entering = (index < I(0)) == forward[a];
+      inside = select(lanes & outside & !entering & (forward[a] | backward[a]), M(false), inside);
       index = max(I(0), min(index, I(dims[a] - 1)));
       cell[a] = select(lanes, index, cell[a]);
-      const M forward = dir[a] > 0.0f, backward = dir[a] < 0.0f;
-      step[a] = select(lanes, select(forward, I(1), select(backward, I(-1), I(0))), step[a]);
-      const F plane = to_float(select(forward, index + I(1), index)) * size;
-      t_next[a] = select(lanes, select(forward | backward, (plane - origin[a]) * inv_dir[a], F(kInfinity)),
+      const F plane = to_float(select(forward[a], index + I(1), index)) * size;
+      t_next[a] = select(lanes, select(forward[a] | backward[a], (plane - origin[a]) * inv_dir[a], F(kInfinity)),
                          t_next[a]);
-      t_delta[a] = select(lanes, select(forward, size * inv_dir[a], select(backward, -size * inv_dir[a], F(kInfinity))),
-                          t_delta[a]);
     }
   }
 };
@@ -366,7 +373,9 @@ template <class L> class LaneCursor {
 
   // Lanes whose next sample does not lie in their current cell: out of
   // samples, or on to the next cell, and past the empty cells after it.
-  PENUMBRA_HD void move_on(M lanes) {
+  // Out of line: the walk's state stays in memory, not in the registers of
+  // the loop that calls next() (docs/PERFORMANCE.md, issue 14).
+  PENUMBRA_HD PENUMBRA_COLD_PATH void move_on(M lanes) {
     const M spent = lanes & !(k_v_ < count_v_);
     retire(spent);
     lanes = lanes & !spent;
@@ -380,7 +389,7 @@ template <class L> class LaneCursor {
   // Lanes whose walk stands in a cell that may be empty: walk on to the next
   // occupied cell (before t1) and begin the run there at the first sample at
   // or after the walk's time; lanes that find none are done.
-  PENUMBRA_HD void enter_runs(M lanes) {
+  PENUMBRA_HD PENUMBRA_COLD_PATH void enter_runs(M lanes) {
     while (any(lanes)) {
       const M beyond = lanes & !(walk_.t < t1_v_);
       retire(beyond);
