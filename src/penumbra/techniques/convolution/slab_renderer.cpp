@@ -52,20 +52,6 @@ float box_depth(const Box3& box, const CameraView& c, bool far_side) {
   return z;
 }
 
-// The mesh medium at a world point: the sum over the meshes the point may be
-// in (extinction-weighted colour, summed extinction).
-PENUMBRA_HD inline vec4 mesh_medium(const MeshesView& meshes, std::uint32_t objects, vec3 world) {
-  vec3 weighted(0.0f);
-  float sigma = 0.0f;
-  for (int m = 0; m < meshes.count; ++m) {
-    if (!(objects & (1u << m))) continue;
-    const vec4 c = meshes.objects[m].medium(world);
-    weighted += c.a * vec3(c);
-    sigma += c.a;
-  }
-  return sigma > 0.0f ? vec4(weighted / sigma, sigma) : vec4(0.0f);
-}
-
 // The light a segment scatters toward the viewer, relative to the midpoint
 // sample's alpha * incoming light: the segment has optical depth a along the
 // viewing ray and its medium takes b of the light across it, in proportion to
@@ -186,7 +172,7 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
     if (max_guard > guard) ldi_camera.half_height *= float(image_height + 2 * max_guard) / float(height);
     meshes_.build_ldi(ldi_camera, image_width + 2 * max_guard, image_height + 2 * max_guard);
   }
-  const MeshesView meshes = meshes_.view();
+  const SlabMeshesView meshes = meshes_.view();
   const bool has_meshes = meshes.count > 0;
   if (settings_.preintegrated) preintegration_.update(view.tf, e);
   const PreintegrationView preintegrated = preintegration_.view();
@@ -345,7 +331,7 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
               cover = cross_slab(meshes.ldi, p.layers, z0, glm::min(z1, p.z_plane));
               if (cover.length > 0.0f) {
                 mesh_pos = slab_point(frame, x, int(y), cover.first + p.offset * (cover.last - cover.first));
-                const vec4 m = mesh_medium(meshes, cover.objects, mesh_pos);
+                const vec4 m = meshes.medium(cover.objects, mesh_pos);
                 mesh_sample = vec4(vec3(m), 1.0f - exp_nonpositive(-m.a * cover.length / p.ray_cos));
                 mesh_shadow = m.a * cover.length / e;
               }

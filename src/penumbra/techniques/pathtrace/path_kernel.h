@@ -19,14 +19,14 @@
 // light arrives only through next-event estimation, so nothing is counted
 // twice. Opaque planes block light and paths. The scene's `ambient` is not
 // physical and is ignored. The scene's meshes are media of their own added to
-// the volume's (mesh_media.h), scattering with material.albedo times their
+// the volume's (mesh_tracking.h), scattering with material.albedo times their
 // TF colour like the volume; convolution's surface highlight has no
 // counterpart here.
 #include "penumbra/base/rng.h"
 #include "penumbra/render/lighting.h"
 #include "penumbra/scene/light_sampling.h"
 #include "penumbra/techniques/pathtrace/free_flight.h"
-#include "penumbra/techniques/pathtrace/mesh_media.h"
+#include "penumbra/techniques/pathtrace/mesh_tracking.h"
 #include "penumbra/techniques/pathtrace/phase_sampling.h"
 
 #include <cstdint>

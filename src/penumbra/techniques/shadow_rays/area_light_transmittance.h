@@ -55,12 +55,12 @@ PENUMBRA_HD inline vec2 light_lattice_shift(vec3 p, int light) {
   return vec2(float(h >> 40) * scale, float((h >> 16) & 0xffffffu) * scale);
 }
 
-// V(x) above for the lanes of `points` that are on in `active`.
-template <class L, class Sampler>
-PENUMBRA_HD typename L::Float area_light_transmittance(const RenderView& v, const Sampler& sampler,
-                                                       const Light& light, int light_index, const vec3* points,
-                                                       int samples, float density_scale, typename L::Mask active,
-                                                       RayStats& stats) {
+// The weighted mean above for the lanes of `points`, with T the given
+// transmittance(const Ray* rays, const float* distances) of one shadow ray
+// per lane (L::Float).
+template <class L, class Transmittance>
+PENUMBRA_HD typename L::Float area_light_mean(const Light& light, int light_index, const vec3* points, int samples,
+                                              const Transmittance& transmittance) {
   using F = typename L::Float;
   constexpr int W = L::kWidth;
   vec2 shifts[W];
@@ -77,10 +77,22 @@ PENUMBRA_HD typename L::Float area_light_transmittance(const RenderView& v, cons
       w[i] = s.weight.x + s.weight.y + s.weight.z;  // the colour is the same for every sample
     }
     const F weight = L::load(w);
-    sum += weight * march_transmittance<L>(v, sampler, rays, distances, density_scale, active, stats);
+    sum += weight * transmittance(rays, distances);
     weights += weight;
   }
   return select(weights > 0.0f, sum / max(weights, F(1e-30f)), F(1.0f));
+}
+
+// V(x) above through the volume, for the lanes of `points` that are on in
+// `active`.
+template <class L, class Sampler>
+PENUMBRA_HD typename L::Float area_light_transmittance(const RenderView& v, const Sampler& sampler,
+                                                       const Light& light, int light_index, const vec3* points,
+                                                       int samples, float density_scale, typename L::Mask active,
+                                                       RayStats& stats) {
+  return area_light_mean<L>(light, light_index, points, samples, [&](const Ray* rays, const float* distances) {
+    return march_transmittance<L>(v, sampler, rays, distances, density_scale, active, stats);
+  });
 }
 
 }  // namespace penumbra
