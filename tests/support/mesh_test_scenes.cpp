@@ -52,12 +52,14 @@ float chord(float radius, vec2 offset) {
 }
 
 FloorShadow sphere_floor_shadow(const std::string& technique, const ParameterSettings& params,
-                                const std::string& image_name) {
+                                const std::string& image_name, std::optional<vec3> transport_color) {
   constexpr int kImage = 64;
   constexpr float kHeight = 128.0f;
   constexpr float kRadius = 12.0f;
   Scene scene = mesh_scene(kImage, kHeight, 0.0f);
-  scene.set_meshes({homogeneous_sphere(kRadius, vec3(0.0f))});
+  MeshObject sphere = homogeneous_sphere(kRadius, vec3(0.0f));
+  sphere.material.transport_color = transport_color;
+  scene.set_meshes({sphere});
   Light light;
   light.direction = glm::normalize(vec3(1.0f, 0.0f, -1.0f));
   scene.set_lights({light});
@@ -65,7 +67,7 @@ FloorShadow sphere_floor_shadow(const std::string& technique, const ParameterSet
   const Image image = render_with(scene, technique, params);
   save_test_image(image, image_name);
   const float lit = 0.8f * std::sqrt(0.5f);  // colour * cos(45 deg) * L
-  const float sigma = -std::log(1.0f - kMeshAlphaPerUnit);
+  const vec3 sigma = -std::log(1.0f - kMeshAlphaPerUnit) * (1.0f - transport_color.value_or(vec3(0.0f)));
   FloorShadow f;
   for (int y = 0; y < kImage; ++y) {
     for (int x = 0; x < kImage; ++x) {
@@ -73,21 +75,31 @@ FloorShadow sphere_floor_shadow(const std::string& technique, const ParameterSet
       if (glm::length(p) < 1.2f * kRadius) continue;  // the sphere itself hides the floor
       const vec3 floor(p, -40.0f);
       const float off_axis = glm::length(glm::cross(floor, light.direction));  // distance of the light ray from the centre
-      const float expected = lit * std::exp(-sigma * chord(kRadius, vec2(off_axis, 0.0f)));
-      const float error = std::abs(image.at(x, y).r - expected);
+      const float length = chord(kRadius, vec2(off_axis, 0.0f));
+      const vec3 pixel(image.at(x, y));
+      for (int c = 0; c < 3; ++c) {
+        const float expected = lit * std::exp(-sigma[c] * length);
+        const float error = std::abs(pixel[c] - expected);
+        if (off_axis < 0.5f * kRadius) {
+          f.worst_inside = std::max(f.worst_inside, error);
+          f.mean_inside += pixel[c] - expected;
+        } else if (off_axis > kRadius + 3.0f * kHeight / kImage) {
+          f.worst_outside = std::max(f.worst_outside, error);
+        }
+      }
       if (off_axis < 0.5f * kRadius) {
-        f.worst_inside = std::max(f.worst_inside, error);
-        f.mean_inside += image.at(x, y).r - expected;
+        f.core += pixel;
         ++f.inside;
       } else if (off_axis > kRadius + 3.0f * kHeight / kImage) {
-        f.worst_outside = std::max(f.worst_outside, error);
         ++f.outside;
       }
     }
   }
-  f.mean_inside /= std::max(1, f.inside);
-  std::printf("%s shadow: %d pixels inside, worst %.4f, mean %.4f; %d outside, worst %.4f\n", technique.c_str(),
-              f.inside, f.worst_inside, f.mean_inside, f.outside, f.worst_outside);
+  f.mean_inside /= 3.0 * std::max(1, f.inside);
+  f.core /= float(std::max(1, f.inside));
+  std::printf("%s shadow: %d pixels inside, worst %.4f, mean %.4f, core (%.4f, %.4f, %.4f); %d outside, worst %.4f\n",
+              technique.c_str(), f.inside, f.worst_inside, f.mean_inside, f.core.r, f.core.g, f.core.b, f.outside,
+              f.worst_outside);
   return f;
 }
 

@@ -7,6 +7,7 @@
 #include "penumbra/render/parameters.h"
 #include "penumbra/scene/scene.h"
 
+#include <optional>
 #include <string>
 
 namespace penumbra::testing {
@@ -29,15 +30,18 @@ float chord(float radius, vec2 offset);
 
 // The shadow of a sphere of radius 12 (kMeshAlphaPerUnit) on a floor 40
 // below, lit by a directional light travelling (1, 0, -1), seen from above at
-// 64^2, against lit * exp(-sigma chord): in the core (light rays at most
-// 0.5 R off the centre) and on the floor more than 3 pixels past the rim.
+// 64^2, against lit * exp(-sigma chord) per colour channel: in the core
+// (light rays at most 0.5 R off the centre) and on the floor more than 3
+// pixels past the rim. With a transport colour t the sphere's medium
+// attenuates light with sigma (1 - t) per channel.
 struct FloorShadow {
   int inside = 0, outside = 0;
-  float worst_inside = 0.0f, worst_outside = 0.0f;
-  double mean_inside = 0.0;  // signed: image minus Beer-Lambert
+  float worst_inside = 0.0f, worst_outside = 0.0f;  // over the three channels
+  double mean_inside = 0.0;  // signed: image minus Beer-Lambert, mean over pixels and channels
+  vec3 core{0.0f};           // the mean colour of the core's pixels
 };
 FloorShadow sphere_floor_shadow(const std::string& technique, const ParameterSettings& params,
-                                const std::string& image_name);
+                                const std::string& image_name, std::optional<vec3> transport_color = {});
 
 // A dense homogeneous box (sigma 4.6 per unit: alpha 0.99 per unit), seen
 // obliquely by an orthographic camera and lit from behind the viewer, at

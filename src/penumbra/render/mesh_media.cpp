@@ -1,5 +1,6 @@
 #include "penumbra/render/mesh_media.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace penumbra {
@@ -67,6 +68,8 @@ bool MeshMedia::update(const Scene& scene) {
   color_details_.clear();
   color_tfs_.clear();
   objects_.clear();
+  chromatic_ = std::any_of(meshes.begin(), meshes.end(),
+                           [](const MeshObject& m) { return m.material.transport_color.has_value(); });
   bounds_ = Box3{vec3(kInfinity), vec3(-kInfinity)};
   detail_distance_ = kInfinity;
   for (std::size_t i = 0; i < meshes.size(); ++i) {
@@ -114,6 +117,7 @@ bool MeshMedia::update(const Scene& scene) {
     v.world_to_object = glm::inverse(meshes[i].object_to_world());
     v.specular = meshes[i].material.specular;
     v.roughness = meshes[i].material.roughness;
+    if (const auto& t = meshes[i].material.transport_color) v.light_weight = 1.0f - *t;
     for (int e = 0; e < v.tf.size; ++e) v.sigma_max = glm::max(v.sigma_max, v.tf.sigma[e]);
     objects_.push_back(v);
   }

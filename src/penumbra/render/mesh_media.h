@@ -28,6 +28,9 @@ struct MeshMaterialView {
   float specular = 0.0f;     // F0
   float roughness = 0.3f;    // GGX alpha
   float sigma_max = 0.0f;    // the TF's largest extinction: a majorant of the medium
+  // Light on its way to other samples attenuates with sigma_t * light_weight
+  // per channel: 1 - the material's transport_color (1: grey, as the view).
+  vec3 light_weight{1.0f};
 
   // The medium at a world point: (rgb, sigma_t per world unit).
   PENUMBRA_HD vec4 medium(vec3 world) const {
@@ -46,18 +49,25 @@ struct MeshesView {
   int count = 0;
   const MeshBvhView* shapes = nullptr;  // one per object once MeshMedia::build_shapes() ran, else null
 
-  // The sum of the media of the meshes in `objects` (bit m: mesh m) at a
-  // world point: extinction-weighted colour, summed extinction.
-  PENUMBRA_HD vec4 medium(std::uint32_t inside, vec3 world) const {
+  // The sum of the media of the meshes in `inside` (bit m: mesh m) at a
+  // world point: extinction-weighted colour, summed extinction; and in
+  // `light_sigma` the summed extinction of light per channel (light_weight).
+  PENUMBRA_HD vec4 medium(std::uint32_t inside, vec3 world, vec3& light_sigma) const {
     vec3 weighted(0.0f);
     float sigma = 0.0f;
+    light_sigma = vec3(0.0f);
     for (int m = 0; m < count; ++m) {
       if (!(inside & (1u << m))) continue;
       const vec4 c = objects[m].medium(world);
       weighted += c.a * vec3(c);
       sigma += c.a;
+      light_sigma += c.a * objects[m].light_weight;
     }
     return sigma > 0.0f ? vec4(weighted / sigma, sigma) : vec4(0.0f);
+  }
+  PENUMBRA_HD vec4 medium(std::uint32_t inside, vec3 world) const {
+    vec3 unused;
+    return medium(inside, world, unused);
   }
 };
 
@@ -98,51 +108,55 @@ PENUMBRA_HD void for_each_inside_part(const MeshesView& meshes, int m, const Ray
   }
 }
 
-// The meshes' optical depth along [0, t_max] of `ray`, each part inside a
-// mesh integrated by the midpoint rule over equal steps of at most `step`
-// (exact for homogeneous media, whatever the step: the parts' ends are the
-// exact crossings). Stops adding once it passes `max_depth`.
-PENUMBRA_HD inline float mesh_optical_depth(const MeshesView& meshes, const Ray& ray, float t_max, float step,
-                                            float max_depth, std::uint64_t& lookups) {
-  float depth = 0.0f;
-  for (int m = 0; m < meshes.count && depth < max_depth; ++m) {
+// The meshes' optical depth for light along [0, t_max] of `ray`, per
+// channel (sigma_t * light_weight), each part inside a mesh integrated by
+// the midpoint rule over equal steps of at most `step` (exact for
+// homogeneous media, whatever the step: the parts' ends are the exact
+// crossings). Stops adding once every channel passes `max_depth`.
+PENUMBRA_HD inline vec3 mesh_optical_depth(const MeshesView& meshes, const Ray& ray, float t_max, float step,
+                                           float max_depth, std::uint64_t& lookups) {
+  vec3 depth(0.0f);
+  const auto below = [&] { return glm::min(depth.x, glm::min(depth.y, depth.z)) < max_depth; };
+  for (int m = 0; m < meshes.count && below(); ++m) {
     const MeshMaterialView& mat = meshes.objects[m];
     if (!(mat.sigma_max > 0.0f)) continue;
     for_each_inside_part(meshes, m, ray, t_max, [&](float a, float b) {
       const int n = glm::max(1, int(glm::ceil((b - a) / step)));
       const float h = (b - a) / float(n);
-      for (int i = 0; i < n && depth < max_depth; ++i) {
-        depth += mat.medium(ray.at(a + (float(i) + 0.5f) * h)).a * h;
+      for (int i = 0; i < n && below(); ++i) {
+        depth += (mat.medium(ray.at(a + (float(i) + 0.5f) * h)).a * h) * mat.light_weight;
         ++lookups;
       }
-      return depth < max_depth;
+      return below();
     });
   }
   return depth;
 }
 
-// exp(-density_scale * optical depth) through the meshes (0 past
+// exp(-density_scale * optical depth) through the meshes per channel (0 past
 // kMaxOpticalDepth, as march_transmittance).
-PENUMBRA_HD inline float mesh_transmittance(const MeshesView& meshes, const Ray& ray, float t_max, float step,
-                                            float density_scale, std::uint64_t& lookups) {
-  if (meshes.count == 0 || density_scale <= 0.0f) return 1.0f;
-  const float depth = density_scale * mesh_optical_depth(meshes, ray, t_max, step, kMaxOpticalDepth / density_scale,
-                                                         lookups);
-  return depth < kMaxOpticalDepth ? exp_nonpositive(-depth) : 0.0f;
+PENUMBRA_HD inline vec3 mesh_transmittance(const MeshesView& meshes, const Ray& ray, float t_max, float step,
+                                           float density_scale, std::uint64_t& lookups) {
+  if (meshes.count == 0 || density_scale <= 0.0f) return vec3(1.0f);
+  const vec3 depth = density_scale * mesh_optical_depth(meshes, ray, t_max, step, kMaxOpticalDepth / density_scale,
+                                                        lookups);
+  vec3 t;
+  for (int c = 0; c < 3; ++c) t[c] = depth[c] < kMaxOpticalDepth ? exp_nonpositive(-depth[c]) : 0.0f;
+  return t;
 }
 
 // The same for the W rays of a packet whose lane is on (1 elsewhere): the
 // BVH walk is per ray, so lane by lane.
 template <class L>
-PENUMBRA_HD typename L::Float mesh_transmittance(const MeshesView& meshes, const Ray* rays, const float* t_max,
-                                                 float step, float density_scale, typename L::Mask active,
-                                                 std::uint64_t& lookups) {
-  float out[L::kWidth];
+PENUMBRA_HD typename L::Vec3 mesh_transmittance(const MeshesView& meshes, const Ray* rays, const float* t_max,
+                                                float step, float density_scale, typename L::Mask active,
+                                                std::uint64_t& lookups) {
+  vec3 out[L::kWidth];
   const std::uint32_t on = L::bits(active);
   for (int i = 0; i < L::kWidth; ++i) {
-    out[i] = (on >> i) & 1u ? mesh_transmittance(meshes, rays[i], t_max[i], step, density_scale, lookups) : 1.0f;
+    out[i] = (on >> i) & 1u ? mesh_transmittance(meshes, rays[i], t_max[i], step, density_scale, lookups) : vec3(1.0f);
   }
-  return L::load(out);
+  return pack_lanes<L>(out);
 }
 
 class MeshMedia {
@@ -167,6 +181,9 @@ class MeshMedia {
   float detail_sampling_distance() const { return detail_distance_; }
   // The meshes' largest extinction (0 without meshes).
   float sigma_max() const;
+  // Whether any mesh's material has a transport colour (light attenuates
+  // per channel).
+  bool chromatic() const { return chromatic_; }
   // The step that samples the meshes' media (shadow-rays): at most the
   // render step and the detail's sampling distance, at least min_step().
   float sampling_step(float render_step) const;
@@ -185,6 +202,7 @@ class MeshMedia {
   std::vector<MeshMaterialView> objects_;
   Box3 bounds_{vec3(kInfinity), vec3(-kInfinity)};
   float detail_distance_ = kInfinity;
+  bool chromatic_ = false;
   std::vector<MeshBvh> bvhs_;
   std::vector<MeshBvhView> shapes_;
   int builds_ = 0;

@@ -30,6 +30,8 @@ class MeshResources {
   int builds() const { return media_.builds() + ldi_builds_; }
 
   bool empty() const { return media_.empty(); }
+  // Whether light attenuates per colour channel (a transport colour).
+  bool chromatic() const { return media_.chromatic(); }
   SlabMeshesView view() const { return SlabMeshesView{media_.view(), ldi_.view()}; }
   Box3 world_bounds() const { return media_.world_bounds(); }
   // The slab distance that samples every mesh's detail

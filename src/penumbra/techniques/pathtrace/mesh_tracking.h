@@ -47,11 +47,16 @@ PENUMBRA_HD inline bool mesh_delta_tracking(const MeshesView& meshes, const Ray&
   return collided;
 }
 
-// Ratio-tracking estimate of the meshes' transmittance along [0, t_max].
-PENUMBRA_HD inline float mesh_ratio_tracking(const MeshesView& meshes, const Ray& ray, float t_max, Pcg32& rng,
-                                             std::uint64_t& lookups) {
-  float transmittance = 1.0f;
-  for (int m = 0; m < meshes.count && transmittance > 0.0f; ++m) {
+// Ratio-tracking estimate of the meshes' transmittance of light along
+// [0, t_max], per channel: each mesh's extinction times its light_weight (1
+// - its transport colour) against its grey majorant, which bounds every
+// channel (light_weight <= 1). The roulette acts on the largest channel and
+// keeps the others' ratio to it; for grey media all three are the scalar
+// estimate (the same random numbers as one channel).
+PENUMBRA_HD inline vec3 mesh_ratio_tracking(const MeshesView& meshes, const Ray& ray, float t_max, Pcg32& rng,
+                                            std::uint64_t& lookups) {
+  vec3 transmittance(1.0f);
+  for (int m = 0; m < meshes.count && max_component(transmittance) > 0.0f; ++m) {
     const MeshMaterialView& mat = meshes.objects[m];
     const float majorant = mat.sigma_max;
     if (!(majorant > 0.0f)) continue;
@@ -60,7 +65,16 @@ PENUMBRA_HD inline float mesh_ratio_tracking(const MeshesView& meshes, const Ray
         t += exponential_step(rng, majorant);
         if (t >= b) return true;
         ++lookups;
-        if (!ratio_tracking_step(transmittance, mat.medium(ray.at(t)).a, majorant, rng)) return false;
+        const float sigma = mat.medium(ray.at(t)).a;
+        transmittance *= glm::max(vec3(0.0f), 1.0f - (sigma / majorant) * mat.light_weight);
+        const float largest = max_component(transmittance);
+        if (largest < kRatioRouletteThreshold) {
+          if (rng.next_float() * kRatioRouletteThreshold >= largest) {
+            transmittance = vec3(0.0f);
+            return false;
+          }
+          transmittance *= kRatioRouletteThreshold / largest;
+        }
       }
     });
   }

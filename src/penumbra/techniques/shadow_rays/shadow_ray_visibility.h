@@ -40,31 +40,32 @@ struct ShadowRayVisibility {
   template <class L>
   PENUMBRA_HD typename L::Vec3 lanes(int light, const typename L::Vec3& p, const LightSampleL<L>& ls,
                                      typename L::Mask active) const {
-    return typename L::Vec3(transmittance<L>(light, p, ls, active, true));
+    return transmittance<L>(light, p, ls, active, true);
   }
 
   // The meshes' part of the visibility alone (1 without meshes).
   template <class L>
-  PENUMBRA_HD typename L::Float mesh_visibility(int light, const typename L::Vec3& p, const LightSampleL<L>& ls,
-                                                typename L::Mask active) const {
-    if (meshes.count == 0) return typename L::Float(1.0f);
+  PENUMBRA_HD typename L::Vec3 mesh_visibility(int light, const typename L::Vec3& p, const LightSampleL<L>& ls,
+                                               typename L::Mask active) const {
+    if (meshes.count == 0) return typename L::Vec3(1.0f);
     return transmittance<L>(light, p, ls, active, false);
   }
 
-  // Through the volume (when `volume`) and the meshes, toward the light's
-  // centre or, for an area light, the mean over its samples of each shadow
-  // ray's product.
+  // Through the volume (when `volume`) and the meshes (per channel: their
+  // transport colours), toward the light's centre or, for an area light,
+  // the mean over its samples of each shadow ray's product.
   template <class L>
-  PENUMBRA_HD typename L::Float transmittance(int light, const typename L::Vec3& p, const LightSampleL<L>& ls,
-                                              typename L::Mask active, bool volume) const {
+  PENUMBRA_HD typename L::Vec3 transmittance(int light, const typename L::Vec3& p, const LightSampleL<L>& ls,
+                                             typename L::Mask active, bool volume) const {
     using F = typename L::Float;
+    using V = typename L::Vec3;
     constexpr int W = L::kWidth;
     vec3 origins[W];
     unpack_lanes<L>(p, origins);
     const AnyVoxelSampler sampler(view->volume.data, view->volume.dims, view->volume.type);
     RayStats unused;
     const auto along = [&](const Ray* rays, const float* distances) {
-      F t = volume ? march_transmittance<L>(*view, sampler, rays, distances, density_scale, active, unused) : F(1.0f);
+      V t(volume ? march_transmittance<L>(*view, sampler, rays, distances, density_scale, active, unused) : F(1.0f));
       if (meshes.count > 0) {
         t = t * mesh_transmittance<L>(meshes, rays, distances, mesh_step, density_scale, active, unused.samples);
       }
@@ -109,7 +110,7 @@ struct CachedShadowRayVisibility {
       cached = entry_cached_visibility<L>(caches[light], rays.view->box, volume_rays(), light, p, ls, active);
     }
     if (rays.meshes.count == 0) return cached;
-    return cached * V(rays.mesh_visibility<L>(light, p, ls, active));
+    return cached * rays.mesh_visibility<L>(light, p, ls, active);
   }
 
  private:
