@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Slab rings and bands (issue 23): convolution with and without the per-pixel
 jitter within slabs, against the same technique at a slab distance eight
-times finer (pathtrace does not draw meshes).
+times finer (the rings are convolution's own error, so it is its own reference).
 
 Prints per slab distance: mean / p99 dE against the fine render; the
 structured error, the RMS of the grey error box-filtered over 5x5 pixels

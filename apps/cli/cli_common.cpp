@@ -5,7 +5,9 @@
 #include "penumbra/techniques/registry.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cstdlib>
 
@@ -88,6 +90,17 @@ std::optional<std::filesystem::path> find_data_dir() {
     if (std::filesystem::is_directory(c, ec)) return std::filesystem::weakly_canonical(c, ec);
   }
   return std::nullopt;
+}
+
+void warn_if_meshes_not_drawn(const Scene& scene, const TechniqueInfo& info) {
+  if (scene.meshes().empty() || info.draws_meshes) return;
+  std::vector<std::string> drawing;
+  for (const TechniqueInfo& t : technique_registry()) {
+    if (t.draws_meshes) drawing.push_back(t.name);
+  }
+  std::sort(drawing.begin(), drawing.end());
+  fmt::print(stderr, "penumbra: warning: {} does not draw the scene's {} mesh(es); {} do\n", info.name,
+             scene.meshes().size(), fmt::join(drawing, ", "));
 }
 
 }  // namespace penumbra::cli

@@ -38,6 +38,10 @@ std::optional<std::filesystem::path> find_data_dir();
 // there, otherwise the procedural spheres.
 Scene demo_scene();
 
+// Warns on stderr when the scene has meshes and `info` does not draw them,
+// naming the techniques that do ("penumbra: warning: T does not draw ...").
+void warn_if_meshes_not_drawn(const Scene& scene, const TechniqueInfo& info);
+
 // Parses "WxH" (e.g. "512x512"); throws InvalidArgument naming --size.
 std::pair<int, int> parse_size(const std::string& text);
 

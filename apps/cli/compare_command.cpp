@@ -199,6 +199,8 @@ void run_compare(const CompareOptions& options) {
   std::filesystem::create_directories(dir, ec);
   if (ec || !std::filesystem::is_directory(dir)) throw IoError(dir.string(), "cannot create the output folder");
 
+  if (reference_info) warn_if_meshes_not_drawn(scene, *reference_info);
+  for (const TechniqueInfo* info : infos) warn_if_meshes_not_drawn(scene, *info);
   const Comparison comparison = compare_techniques(scene, request, [](const std::string& name, bool reference) {
     fmt::print(stderr, "{}: {}\n", reference ? "reference" : "technique", name);
   });

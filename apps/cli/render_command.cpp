@@ -78,11 +78,7 @@ void run_render(const RenderOptions& options) {
     throw InvalidArgument("--frames", "the scene has no animated detail to advance (a mesh whose detail has a "
                                       "\"time\" key)");
   }
-  if (!scene.meshes().empty() && !info.draws_meshes) {
-    fmt::print(stderr,
-               "penumbra: warning: {} does not draw the scene's {} mesh(es); convolution and pathtrace do\n", info.name,
-               scene.meshes().size());
-  }
+  warn_if_meshes_not_drawn(scene, info);
   if (options.frames > 1) {
     const std::string ext = std::filesystem::path(output).extension().string();
     if (ext != ".png" && ext != ".exr") {

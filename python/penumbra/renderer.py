@@ -41,7 +41,8 @@ class Renderer:
         self._handle = _penumbra.RendererHandle(scene._handle, technique or "", params)
         meshes = scene._handle.to_json().get("meshes")
         if meshes and not _penumbra.technique(self.technique).draws_meshes:
-            warnings.warn(f"{self.technique} does not draw the scene's {len(meshes)} mesh(es); convolution does",
+            warnings.warn(f"{self.technique} does not draw the scene's {len(meshes)} mesh(es); "
+                          + ", ".join(sorted(t.name for t in _penumbra.techniques() if t.draws_meshes)) + " do",
                           stacklevel=2)
 
     def render(self, progress: Optional[ProgressCallback] = None) -> Image:

@@ -88,11 +88,12 @@ def test_updates_rebuild_only_what_depends_on_the_change():
 
 def test_techniques_that_do_not_draw_meshes_say_so():
     meshes = [{"builtin": "sphere", "scale": 8.0}]
-    with pytest.warns(UserWarning, match="does not draw"):
-        penumbra.Renderer(small_scene(meshes=meshes), "shadow-rays")
+    with pytest.warns(UserWarning, match="does not draw .*; convolution, pathtrace, shadow-rays do"):
+        penumbra.Renderer(small_scene(meshes=meshes), "phong")
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         penumbra.Renderer(small_scene(meshes=meshes), "convolution")
+        penumbra.Renderer(small_scene(meshes=meshes), "shadow-rays")
 
 
 def test_parameters_are_checked_and_named():

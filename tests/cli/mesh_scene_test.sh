@@ -27,23 +27,26 @@ scene() {
 
 scene '[{"builtin": "sphere", "scale": 3}]' > "$work/sphere.json"
 
-# A technique that does not draw meshes: a warning on stderr (not stdout), and the image anyway.
-run "$work/sphere.json" --technique shadow-rays --size 16x16
-[ "$rc" -eq 0 ] || fail "shadow-rays exited $rc: $err"
-grep -qF "warning: shadow-rays does not draw the scene's 1 mesh(es)" <<<"$err" || fail "no mesh warning on stderr: $err"
+# A technique that does not draw meshes: a warning on stderr (not stdout) naming those that do, and the image anyway.
+run "$work/sphere.json" --technique phong --size 16x16
+[ "$rc" -eq 0 ] || fail "phong exited $rc: $err"
+grep -qF "warning: phong does not draw the scene's 1 mesh(es); convolution, pathtrace, shadow-rays do" <<<"$err" ||
+  fail "no mesh warning on stderr: $err"
 grep -qi "warning" <<<"$out" && fail "the warning went to stdout: $out"
-[ -s "$work/out.png" ] || fail "shadow-rays wrote no image"
+[ -s "$work/out.png" ] || fail "phong wrote no image"
 
-# convolution draws them: no warning.
-run "$work/sphere.json" --technique convolution --size 16x16
-[ "$rc" -eq 0 ] || fail "convolution exited $rc: $err"
-grep -qi "warning" <<<"$err" && fail "convolution warned: $err"
-[ -s "$work/out.png" ] || fail "convolution wrote no image"
-head -c 8 "$work/out.png" | od -An -c | grep -q "P   N   G" || fail "convolution's out.png is not a PNG"
+# convolution and shadow-rays draw them: no warning.
+for technique in convolution shadow-rays; do
+  run "$work/sphere.json" --technique $technique --size 16x16
+  [ "$rc" -eq 0 ] || fail "$technique exited $rc: $err"
+  grep -qi "warning" <<<"$err" && fail "$technique warned: $err"
+  [ -s "$work/out.png" ] || fail "$technique wrote no image"
+  head -c 8 "$work/out.png" | od -An -c | grep -q "P   N   G" || fail "$technique's out.png is not a PNG"
+done
 
 # No meshes, no warning.
 printf '{"volume": {"builtin": "spheres", "size": [8, 8, 8]}}' > "$work/no_meshes.json"
-run "$work/no_meshes.json" --technique shadow-rays --size 16x16
+run "$work/no_meshes.json" --technique phong --size 16x16
 [ "$rc" -eq 0 ] || fail "a scene without meshes exited $rc: $err"
 grep -qi "warning" <<<"$err" && fail "a scene without meshes warned: $err"
 

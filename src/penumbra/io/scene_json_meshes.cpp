@@ -75,7 +75,7 @@ DetailFunction read_detail(const json& j, const std::string& section, const std:
 MeshMaterial read_material(const json& j, const std::string& section, const std::filesystem::path& base_dir,
                            const SceneParseOptions& options) {
   const ObjectReader r(j, section, {"detail", "transfer_function", "color_detail", "color_transfer_function",
-                                    "specular", "roughness"});
+                                    "specular", "roughness", "transport_color"});
   MeshMaterial m;
   if (r.has("detail")) m.detail = read_detail(r.at("detail"), r.key("detail"), base_dir, options);
   if (r.has("transfer_function")) {
@@ -94,6 +94,7 @@ MeshMaterial read_material(const json& j, const std::string& section, const std:
   }
   m.specular = r.number("specular", m.specular);
   m.roughness = r.number("roughness", m.roughness);
+  if (r.has("transport_color")) m.transport_color = r.vector3("transport_color", vec3(0.0f));
   return m;
 }
 
@@ -159,6 +160,7 @@ json meshes_to_json(const std::vector<MeshObject>& meshes) {
                       {"transfer_function", to_json(m.material.tf)},
                       {"specular", m.material.specular},
                       {"roughness", m.material.roughness}};
+    if (m.material.transport_color) mj["material"]["transport_color"] = to_json(*m.material.transport_color);
     if (m.material.has_color_detail) {
       mj["material"]["color_detail"] = detail_to_json(m.material.color_detail);
       mj["material"]["color_transfer_function"] = to_json(m.material.color_tf);

@@ -30,7 +30,7 @@ TEST(SceneJsonMeshes, ReadsEveryKeyAndWritesThemBack) {
                   "transfer_function": {"points": [[0, 1, 0, 0, 0.1], [1, 0, 1, 0, 0.5]], "range": [0, 2]},
                   "color_detail": {"type": "noise", "frequency": 4},
                   "color_transfer_function": {"points": [[0, 1, 0, 0, 0], [1, 0, 0, 1, 0]]},
-                  "specular": 0.5, "roughness": 0.2}},
+                  "specular": 0.5, "roughness": 0.2, "transport_color": [0.8, 0.1, 0]}},
     {"builtin": "box"}])"),
                                   std::filesystem::temp_directory_path());
   ASSERT_EQ(scene.meshes().size(), 2u);
@@ -59,6 +59,9 @@ TEST(SceneJsonMeshes, ReadsEveryKeyAndWritesThemBack) {
   EXPECT_EQ(m.material.color_tf.points().size(), 2u);
   EXPECT_FALSE(scene.meshes()[1].material.detail.time_dependent);
   EXPECT_FALSE(scene.meshes()[1].material.has_color_detail);
+  ASSERT_TRUE(m.material.transport_color.has_value());
+  EXPECT_EQ(*m.material.transport_color, vec3(0.8f, 0.1f, 0.0f));
+  EXPECT_FALSE(scene.meshes()[1].material.transport_color.has_value());
   // The camera frames the meshes too: the torus (radius 1 x 4) reaches past the 8^3 box.
   EXPECT_GT(glm::length(scene.camera().eye - scene.camera().target), 10.0f);
 
@@ -107,6 +110,10 @@ TEST(SceneJsonMeshes, NamesTheKeyAtFault) {
             "meshes[0].material.detail.texture");
   EXPECT_EQ(mesh_error_key(R"([{"builtin": "box", "material": {"specular": 2}}])"), "meshes[0].material.specular");
   EXPECT_EQ(mesh_error_key(R"([{"builtin": "box", "material": {"roughness": 0}}])"), "meshes[0].material.roughness");
+  EXPECT_EQ(mesh_error_key(R"([{"builtin": "box", "material": {"transport_color": [1, 0, 1.5]}}])"),
+            "meshes[0].material.transport_color");
+  EXPECT_EQ(mesh_error_key(R"([{"builtin": "box", "material": {"transport_color": [1, 0]}}])"),
+            "meshes[0].material.transport_color");
   EXPECT_EQ(mesh_error_key(R"([{"builtin": "box", "material": {"transfer_function": {"points": []}}}])"),
             "meshes[0].material.transfer_function.points");
   std::string many = "[";

@@ -20,6 +20,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -70,6 +71,12 @@ struct MeshMaterial {
   TransferFunction color_tf;
   float specular = 0.04f;  // Fresnel reflectance at normal incidence (Schlick); 0 = no highlight
   float roughness = 0.3f;  // GGX alpha, in (0, 1]
+  // Optional chromatic attenuation (Patel et al. 2013, Fig. 7e, after Kniss
+  // et al. 2003's transport colour): light on its way to other samples
+  // attenuates per channel with sigma_t (1 - transport_color), so the medium
+  // lets that colour through; along viewing rays the extinction stays grey.
+  // Absent: grey (as [0, 0, 0], without the three-channel light buffers).
+  std::optional<vec3> transport_color;
 };
 
 // Where a mesh came from, as a scene file names it.

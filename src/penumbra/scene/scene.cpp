@@ -198,6 +198,13 @@ void Scene::set_meshes(std::vector<MeshObject> meshes) {
     if (!(mat.roughness > 0.0f && mat.roughness <= 1.0f)) {
       throw InvalidScene(key + ".material.roughness", "must be in (0, 1]");
     }
+    if (const auto& t = mat.transport_color) {
+      for (int c = 0; c < 3; ++c) {
+        if (!((*t)[c] >= 0.0f && (*t)[c] <= 1.0f)) {
+          throw InvalidScene(key + ".material.transport_color", "each channel must be in [0, 1]");
+        }
+      }
+    }
     const DetailFunction& d = mat.detail;
     if (!(d.frequency > 0.0f) || !is_finite(d.frequency)) {
       throw InvalidScene(key + ".material.detail.frequency", "must be positive");

@@ -52,20 +52,6 @@ float box_depth(const Box3& box, const CameraView& c, bool far_side) {
   return z;
 }
 
-// The mesh medium at a world point: the sum over the meshes the point may be
-// in (extinction-weighted colour, summed extinction).
-PENUMBRA_HD inline vec4 mesh_medium(const MeshesView& meshes, std::uint32_t objects, vec3 world) {
-  vec3 weighted(0.0f);
-  float sigma = 0.0f;
-  for (int m = 0; m < meshes.count; ++m) {
-    if (!(objects & (1u << m))) continue;
-    const vec4 c = meshes.objects[m].medium(world);
-    weighted += c.a * vec3(c);
-    sigma += c.a;
-  }
-  return sigma > 0.0f ? vec4(weighted / sigma, sigma) : vec4(0.0f);
-}
-
 // The light a segment scatters toward the viewer, relative to the midpoint
 // sample's alpha * incoming light: the segment has optical depth a along the
 // viewing ray and its medium takes b of the light across it, in proportion to
@@ -81,6 +67,12 @@ PENUMBRA_HD inline float segment_light_factor(float a, float b) {
   const float along = ab > 1e-4f ? -std::expm1(-ab) / ab : 1.0f - 0.5f * ab;   // (1 - e^{-(a+b)}) / (a + b)
   const float alpha = a > 1e-4f ? -std::expm1(-a) / a : 1.0f - 0.5f * a;       // (1 - e^{-a}) / a
   return along / alpha;
+}
+
+// The same per colour channel of b (one evaluation when the light is grey).
+inline vec3 segment_light_factor(float a, vec3 b) {
+  if (b.x == b.y && b.y == b.z) return vec3(segment_light_factor(a, b.x));
+  return vec3(segment_light_factor(a, b.x), segment_light_factor(a, b.y), segment_light_factor(a, b.z));
 }
 
 }  // namespace
@@ -178,15 +170,20 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
   const int width = view.width, height = view.height;
 
   const std::size_t pixels = std::size_t(width) * std::size_t(height);
+  // Light buffers hold one grey transmittance per texel, or one per colour
+  // channel when a mesh's transport colour attenuates light chromatically
+  // (Patel et al. 2013, Fig. 7e; DESIGN-NOTES).
+  const int channels = meshes_.chromatic() ? 3 : 1;
   check_memory_budget("convolution buffers",
-                      checked_product({pixels, 2 * std::uint64_t(light_count) * sizeof(float) + sizeof(PixelState)}));
+                      checked_product({pixels, 2 * std::uint64_t(light_count) * std::uint64_t(channels) * sizeof(float) +
+                                                   sizeof(PixelState)}));
   const int ldi_shift = max_guard - guard;  // LDI pixel of this frame's pixel (0, 0)
   if (!meshes_.empty()) {
     CameraView ldi_camera = cam;
     if (max_guard > guard) ldi_camera.half_height *= float(image_height + 2 * max_guard) / float(height);
     meshes_.build_ldi(ldi_camera, image_width + 2 * max_guard, image_height + 2 * max_guard);
   }
-  const MeshesView meshes = meshes_.view();
+  const SlabMeshesView meshes = meshes_.view();
   const bool has_meshes = meshes.count > 0;
   if (settings_.preintegrated) preintegration_.update(view.tf, e);
   const PreintegrationView preintegrated = preintegration_.view();
@@ -228,7 +225,7 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
   }
   last_slabs_ = slabs;
 
-  buffers_.assign(2 * pixels * std::size_t(light_count), 1.0f);
+  buffers_.assign(2 * pixels * std::size_t(light_count) * std::size_t(channels), 1.0f);
   std::vector<SlabKernelBuilder> kernels;
   std::vector<float> light_path;  // world length of light path per slab
   std::vector<vec3> light_travel;  // unit direction the light travels
@@ -251,7 +248,14 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
   const bool separate_shadow_tf = scene.shadow_transfer_function().has_value();
   std::atomic<std::uint64_t> samples{0};
   int current = 0;  // which half of each light's pair holds the previous slab's light
-  auto buffer = [&](int l, int half) { return buffers_.data() + (std::size_t(2 * l + half)) * pixels; };
+  auto buffer = [&](int l, int half, int c = 0) {
+    return buffers_.data() + std::size_t((2 * l + half) * channels + c) * pixels;
+  };
+  // The light of buffer pair l's half at texel i (grey or per channel).
+  auto light_at = [&](int l, int half, std::size_t i) {
+    return channels == 1 ? vec3(buffer(l, half)[i])
+                         : vec3(buffer(l, half, 0)[i], buffer(l, half, 1)[i], buffer(l, half, 2)[i]);
+  };
   const ScatteringLighting<BufferVisibility> volume_light{&view, {nullptr}, view.material.shading};
   const ScatteringLighting<BufferVisibility> mesh_light{&view, {nullptr}, Shading::Phase};
 
@@ -276,7 +280,8 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
       const int next = 1 - current;
       for (int l = 0; l < light_count; ++l) {
         if (k == 0) continue;  // buffers start unoccluded
-        convolve_slab(frame, kernels[std::size_t(l)].for_slab(k), buffer(l, current), buffer(l, next), z);
+        const SlabKernel kernel = kernels[std::size_t(l)].for_slab(k);
+        for (int c = 0; c < channels; ++c) convolve_slab(frame, kernel, buffer(l, current, c), buffer(l, next, c), z);
       }
       if (k > 0) current = next;
       parallel_for(0, height, [&](std::int64_t first, std::int64_t last) {
@@ -339,21 +344,22 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
             // The meshes: the part of the slab inside them (up to a plane).
             SlabCoverage cover;
             vec4 mesh_sample(0.0f);
-            float mesh_shadow = 0.0f;
+            vec3 mesh_shadow(0.0f);  // per channel: transport colours
             vec3 mesh_pos(0.0f);
             if (has_meshes) {
               cover = cross_slab(meshes.ldi, p.layers, z0, glm::min(z1, p.z_plane));
               if (cover.length > 0.0f) {
                 mesh_pos = slab_point(frame, x, int(y), cover.first + p.offset * (cover.last - cover.first));
-                const vec4 m = mesh_medium(meshes, cover.objects, mesh_pos);
+                vec3 light_sigma;
+                const vec4 m = meshes.medium(cover.objects, mesh_pos, light_sigma);
                 mesh_sample = vec4(vec3(m), 1.0f - exp_nonpositive(-m.a * cover.length / p.ray_cos));
-                mesh_shadow = m.a * cover.length / e;
+                mesh_shadow = light_sigma * (cover.length / e);
               }
             }
 
             if (!volume_here && cover.length <= 0.0f && cover.entry < 0 && !plane_here) continue;  // empty here
             for (std::size_t s = 0; s < slot_of.size(); ++s) {
-              if (slot_of[s] >= 0) incoming[s] = vec3(buffer(slot_of[s], current)[i]);
+              if (slot_of[s] >= 0) incoming[s] = light_at(slot_of[s], current, i);
             }
             if (shading) {
               // The highlight of the first surface entered in this slab.
@@ -381,7 +387,7 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
               // light entering the slab unattenuated, as in the paper, a dense
               // mesh came out too bright and striped with a brightness that
               // grew with the slab distance (issue 23).
-              auto composite = [&](vec4 sample, const float* half_depth, vec3 pos, vec3 index, float v,
+              auto composite = [&](vec4 sample, const vec3* half_depth, vec3 pos, vec3 index, float v,
                                    const ScatteringLighting<BufferVisibility>& lighting) {
                 if (!(sample.a > 0.0f)) return;
                 const float view_depth = -std::log1p(-glm::min(sample.a, 1.0f - 1e-7f));
@@ -396,7 +402,7 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
                 p.color += (p.transmittance * sample.a) * lit.sample(sp);
                 p.transmittance *= 1.0f - sample.a;
               };
-              float volume_half[kMaxLights];
+              vec3 volume_half[kMaxLights];
               if (volume_sample.a > 0.0f) {
                 const float fraction = (s1 - s0) / e;
                 for (int l = 0; l < light_count; ++l) {
@@ -407,10 +413,10 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
                     const vec3 qi = view.volume.index_from_world(q);
                     if (shadow.majorant_at(qi) > 0.0f) sigma = tf_lookup(shadow.tf, sampler(qi)).a;
                   }
-                  volume_half[l] = sigma * half_path;
+                  volume_half[l] = vec3(sigma * half_path);
                 }
               }
-              float mesh_half[kMaxLights];
+              vec3 mesh_half[kMaxLights];
               if (mesh_sample.a > 0.0f) {
                 for (int l = 0; l < light_count; ++l) mesh_half[l] = 0.5f * mesh_shadow * light_path[std::size_t(l)];
               }
@@ -423,16 +429,18 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
               }
             }
             // (4) the light leaving this slab toward the next.
-            const float optical_depth = volume_shadow + mesh_shadow;
-            if (optical_depth > 0.0f) {
+            const vec3 optical_depth = volume_shadow + mesh_shadow;
+            if (max_component(optical_depth) > 0.0f) {
               for (int l = 0; l < light_count; ++l) {
-                buffer(l, current)[i] *= exp_nonpositive(-optical_depth * light_path[std::size_t(l)]);
+                for (int c = 0; c < channels; ++c) {
+                  buffer(l, current, c)[i] *= exp_nonpositive(-optical_depth[c] * light_path[std::size_t(l)]);
+                }
               }
             }
             if (plane_here) {
               // Lit by the light that crossed this slab's medium in front of it.
               for (std::size_t s = 0; s < slot_of.size(); ++s) {
-                if (slot_of[s] >= 0) vis[s] = vec3(buffer(slot_of[s], current)[i]);
+                if (slot_of[s] >= 0) vis[s] = light_at(slot_of[s], current, i);
               }
               shade_plane(p, x, int(y), vis);
             }
@@ -455,7 +463,7 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
         if (p.guard) continue;
         if (!p.done && p.plane >= 0) {
           for (std::size_t s = 0; s < slot_of.size(); ++s) {
-            if (slot_of[s] >= 0) vis[s] = light_count > 0 && slabs > 0 ? vec3(buffer(slot_of[s], current)[i]) : vec3(1.0f);
+            if (slot_of[s] >= 0) vis[s] = light_count > 0 && slabs > 0 ? light_at(slot_of[s], current, i) : vec3(1.0f);
           }
           shade_plane(p, x, int(y), vis);
         }

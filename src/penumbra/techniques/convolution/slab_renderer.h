@@ -25,7 +25,10 @@
 // the phase function like the volume (the paper's "purely diffuse"
 // illumination) and composited with the volume's sample in depth order; the
 // first surface a ray enters in a slab adds the microfacet highlight
-// (render/microfacet.h). Both media attenuate the light buffers.
+// (render/microfacet.h). Both media attenuate the light buffers: grey, or
+// per colour channel (three buffers per light) when a mesh's material has a
+// transport colour (its light extinction sigma_t (1 - transport_color);
+// Patel et al. 2013, Fig. 7e).
 // Preintegrated compositing (optional): the volume segment between the
 // previous slab's sample and this one takes its opacity and colour from the
 // preintegration table of the TF (preintegration.h) instead of one point.
@@ -70,7 +73,7 @@ class SlabRenderer {
   MeshResources meshes_;
   PreintegrationCache preintegration_;
   SlabSettings settings_;
-  std::vector<float> buffers_;  // 2 per light, ping-pong: the light's transmittance (grey, DESIGN-NOTES)
+  std::vector<float> buffers_;  // 2 per light, ping-pong: the light's transmittance, grey or per channel (DESIGN-NOTES)
   int last_slabs_ = 0;
 };
 

@@ -19,14 +19,17 @@
 // light arrives only through next-event estimation, so nothing is counted
 // twice. Opaque planes block light and paths. The scene's `ambient` is not
 // physical and is ignored. The scene's meshes are media of their own added to
-// the volume's (mesh_media.h), scattering with material.albedo times their
+// the volume's (mesh_tracking.h), scattering with material.albedo times their
 // TF colour like the volume; convolution's surface highlight has no
-// counterpart here.
+// counterpart here. A mesh's transport colour (chromatic attenuation, like
+// `ambient` an appearance control outside the physical model) colours the
+// light on next-event estimation's shadow rays only; paths themselves fly
+// through the grey extinction.
 #include "penumbra/base/rng.h"
 #include "penumbra/render/lighting.h"
 #include "penumbra/scene/light_sampling.h"
 #include "penumbra/techniques/pathtrace/free_flight.h"
-#include "penumbra/techniques/pathtrace/mesh_media.h"
+#include "penumbra/techniques/pathtrace/mesh_tracking.h"
 #include "penumbra/techniques/pathtrace/phase_sampling.h"
 
 #include <cstdint>
@@ -104,8 +107,8 @@ struct PathKernel {
       const float f = factor(ls.to_light);
       if (!(f > 0.0f)) continue;
       if (blocked_by_planes(v, p, LightSample{ls.to_light, ls.distance, ls.weight}, skip_plane)) continue;
-      float transmittance = ratio_tracking(*shadows, sampler, Ray{p, ls.to_light}, ls.distance, rng, lookups);
-      if (meshes.count > 0 && transmittance > 0.0f) {
+      vec3 transmittance(ratio_tracking(*shadows, sampler, Ray{p, ls.to_light}, ls.distance, rng, lookups));
+      if (meshes.count > 0 && transmittance.x > 0.0f) {
         transmittance *= mesh_ratio_tracking(meshes, Ray{p, ls.to_light}, ls.distance, rng, lookups);
       }
       sum += (f * transmittance) * ls.weight;

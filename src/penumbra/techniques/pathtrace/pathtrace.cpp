@@ -98,16 +98,7 @@ class PathTrace final : public Technique {
     meshes_.update(scene);
     meshes_.build_shapes();
     std::vector<Box3> bounds;
-    for (const MeshObject& m : scene.meshes()) {
-      const mat4 to_world = m.object_to_world();
-      Box3 b{vec3(kInfinity), vec3(-kInfinity)};
-      for (const vec3& q : m.mesh->positions) {
-        const vec3 w(to_world * vec4(q, 1.0f));
-        b.lower = glm::min(b.lower, w);
-        b.upper = glm::max(b.upper, w);
-      }
-      bounds.push_back(b);
-    }
+    for (const TriangleMesh& m : meshes_.world_meshes()) bounds.push_back(m.bounds());
     check_mesh_tracking_cost(meshes_.view(), bounds);
     // The shadow TF's majorants share the macrocell grid (and its cell count).
     const std::size_t cells = resources_.majorants().majorant.size();
@@ -285,7 +276,7 @@ class PathTrace final : public Technique {
 
  private:
   SceneResources resources_;
-  MeshResources meshes_;  // the scene's meshes as media (mesh_media.h)
+  MeshMedia meshes_;  // the scene's meshes as media (mesh_tracking.h)
   PathSettings settings_;
   int spp_ = 1;
   int min_spp_ = 1;

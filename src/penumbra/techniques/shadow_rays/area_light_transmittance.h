@@ -55,17 +55,19 @@ PENUMBRA_HD inline vec2 light_lattice_shift(vec3 p, int light) {
   return vec2(float(h >> 40) * scale, float((h >> 16) & 0xffffffu) * scale);
 }
 
-// V(x) above for the lanes of `points` that are on in `active`.
-template <class L, class Sampler>
-PENUMBRA_HD typename L::Float area_light_transmittance(const RenderView& v, const Sampler& sampler,
-                                                       const Light& light, int light_index, const vec3* points,
-                                                       int samples, float density_scale, typename L::Mask active,
-                                                       RayStats& stats) {
+// The weighted mean above for the lanes of `points`, with T the given
+// transmittance(const Ray* rays, const float* distances) of one shadow ray
+// per lane (L::Float, or L::Vec3 per colour channel).
+template <class L, class Transmittance>
+PENUMBRA_HD auto area_light_mean(const Light& light, int light_index, const vec3* points, int samples,
+                                 const Transmittance& transmittance) {
   using F = typename L::Float;
+  using T = decltype(transmittance(static_cast<const Ray*>(nullptr), static_cast<const float*>(nullptr)));
   constexpr int W = L::kWidth;
   vec2 shifts[W];
   for (int i = 0; i < W; ++i) shifts[i] = light_lattice_shift(points[i], light_index);
-  F sum(0.0f), weights(0.0f);
+  T sum(0.0f);
+  F weights(0.0f);
   for (int k = 0; k < samples; ++k) {
     Ray rays[W];
     float distances[W], w[W];
@@ -77,10 +79,22 @@ PENUMBRA_HD typename L::Float area_light_transmittance(const RenderView& v, cons
       w[i] = s.weight.x + s.weight.y + s.weight.z;  // the colour is the same for every sample
     }
     const F weight = L::load(w);
-    sum += weight * march_transmittance<L>(v, sampler, rays, distances, density_scale, active, stats);
+    sum += weight * transmittance(rays, distances);
     weights += weight;
   }
-  return select(weights > 0.0f, sum / max(weights, F(1e-30f)), F(1.0f));
+  return select(weights > 0.0f, sum / max(weights, F(1e-30f)), T(1.0f));
+}
+
+// V(x) above through the volume, for the lanes of `points` that are on in
+// `active`.
+template <class L, class Sampler>
+PENUMBRA_HD typename L::Float area_light_transmittance(const RenderView& v, const Sampler& sampler,
+                                                       const Light& light, int light_index, const vec3* points,
+                                                       int samples, float density_scale, typename L::Mask active,
+                                                       RayStats& stats) {
+  return area_light_mean<L>(light, light_index, points, samples, [&](const Ray* rays, const float* distances) {
+    return march_transmittance<L>(v, sampler, rays, distances, density_scale, active, stats);
+  });
 }
 
 }  // namespace penumbra

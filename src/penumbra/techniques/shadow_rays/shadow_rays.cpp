@@ -1,10 +1,12 @@
 #include "penumbra/techniques/shadow_rays/shadow_rays.h"
 
+#include "penumbra/render/mesh_march.h"
 #include "penumbra/render/render_lit.h"
 #include "penumbra/render/scene_resources.h"
 #include "penumbra/techniques/shadow_rays/shadow_cache.h"
 #include "penumbra/techniques/shadow_rays/shadow_ray_visibility.h"
 
+#include <algorithm>
 #include <vector>
 
 namespace penumbra {
@@ -14,6 +16,8 @@ class ShadowRays final : public Technique {
  public:
   void prepare(const Scene& scene, const ParameterValues& params) override {
     const bool shared_changed = resources_.update(scene, scene.material().shading == Shading::Phong);
+    meshes_.update(scene);
+    meshes_.build_shapes();
     density_scale_ = float(params.number("shadow_density_scale"));
     light_samples_ = params.integer("light_samples");
     use_cache_ = params.flag("shadow_cache");
@@ -45,7 +49,19 @@ class ShadowRays final : public Technique {
     view.structures = rebuilds_;  // the caches' version, for device mirrors
     const RenderView shadows = resources_.shadow_view(scene);
     const Shading shading = scene.material().shading;
-    const ShadowRayVisibility rays{&shadows, density_scale_, light_samples_};
+    ShadowRayVisibility rays{&shadows, density_scale_, light_samples_};
+    if (!meshes_.empty()) {
+      rays.meshes = meshes_.view();
+      rays.mesh_step = meshes_.sampling_step(view.step);
+      const MeshMarch march{rays.meshes, rays.mesh_step, meshes_.min_step(),
+                            has_extinction(view) || has_extinction(shadows)};
+      if (use_cache_) {
+        render_meshes(view, march, CachedShadowRayVisibility{rays, cache_views_.data()}, shading, image, stats);
+      } else {
+        render_meshes(view, march, rays, shading, image, stats);
+      }
+      return;
+    }
     if (use_cache_) {
       render_lit(view, CachedShadowRayVisibility{rays, cache_views_.data()}, shading, image, stats);
     } else {
@@ -56,13 +72,29 @@ class ShadowRays final : public Technique {
   std::uint64_t rebuilds() const override { return rebuilds_; }
 
   std::uint64_t aux_bytes() const override {
-    std::uint64_t bytes = 0;
+    std::uint64_t bytes = meshes_.bytes();
     for (const Volume& c : caches_) bytes += c.total_bytes();
     return bytes;
   }
 
  private:
+  // Whether any macrocell of the view can have extinction.
+  bool has_extinction(const RenderView& v) const {
+    const std::size_t cells = resources_.majorants().majorant.size();
+    return v.majorants && std::any_of(v.majorants, v.majorants + cells, [](float x) { return x > 0.0f; });
+  }
+
+  // The volume (with the scene's shading) and the meshes (with the phase
+  // function) marched together per ray (render/mesh_march.h), on the CPU.
+  template <class Visibility>
+  static void render_meshes(const RenderView& view, const MeshMarch& march, const Visibility& visibility,
+                            Shading shading, Image& image, RenderStats* stats) {
+    render_image_with_meshes(view, march, ScatteringLighting<Visibility>{&view, visibility, shading},
+                             ScatteringLighting<Visibility>{&view, visibility, Shading::Phase}, image, stats);
+  }
+
   SceneResources resources_;
+  MeshMedia meshes_;  // the scene's meshes as media, with their BVHs
   float density_scale_ = 1.0f;
   int light_samples_ = 1;
   bool use_cache_ = false;
@@ -90,7 +122,8 @@ TechniqueInfo shadow_rays_info() {
           ParameterSpec::real("cache_resolution", 0.5, 0.05, 2.0,
                               "shadow cache grid size as a fraction of the data grid"),
       }},
-      [] { return std::make_unique<ShadowRays>(); }};
+      [] { return std::make_unique<ShadowRays>(); },
+      /*draws_meshes=*/true};
 }
 
 }  // namespace penumbra

@@ -17,6 +17,12 @@
 // 1 % for lights below 8 degrees. Opaque planes block the light as seen from
 // its centre (all techniques do); volume occluders soften.
 //
+// The scene's closed meshes are media too (render/mesh_media.h): a mesh
+// scene's viewing rays are marched through the volume and the meshes
+// together (render/mesh_march.h) and every shadow ray crosses both, so each
+// mesh scene has a hard-shadow reference; such scenes render on the CPU
+// (the meshes' BVHs have no device mirror). docs/shadow-rays.md, "Meshes".
+//
 // Default light_samples = 1: one ray toward the light's centre, the
 // hard-shadow reference, unchanged images for every existing scene; ask for
 // 16-64 samples for a soft-shadow reference (docs/PERFORMANCE.md

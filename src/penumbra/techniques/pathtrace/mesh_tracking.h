@@ -1,9 +1,9 @@
 #pragma once
 // The scene's closed meshes as media for the path tracer (issue 23): inside
 // mesh m the extinction and colour are its material TF at its detail
-// function, the medium convolution draws (mesh_resources.h). Each mesh is
-// one more medium added to the volume's, and a sum of media can be tracked
-// one medium at a time: the first real collision of the sum is the nearest
+// function (render/mesh_media.h, the medium every technique that draws
+// meshes samples). Each mesh is one more medium added to the volume's, and a
+// sum of media can be tracked one medium at a time: the first real collision of the sum is the nearest
 // of the media's own first collisions (independent Poisson processes of
 // rates sigma_i add up to one of rate sum sigma_i, and the collision belongs
 // to medium i with probability sigma_i / sum), and the transmittance of the
@@ -13,40 +13,12 @@
 // BVH's crossings, sorted; an odd number of crossings from a point to
 // infinity puts the point inside).
 #include "penumbra/base/rng.h"
-#include "penumbra/techniques/convolution/mesh_resources.h"
+#include "penumbra/render/mesh_media.h"
 #include "penumbra/techniques/pathtrace/free_flight.h"
 
 #include <cstdint>
 
 namespace penumbra {
-
-// Crossings kept per mesh and ray; a ray crossing one mesh more often sees
-// only the nearest 64 (the rest of it counts as outside).
-inline constexpr int kMeshCrossings = 64;
-
-// The parts of `ray` within [0, t_max] inside mesh m, as sorted crossings:
-// calls f(a, b) for each, nearest first, until f returns false.
-template <class F>
-PENUMBRA_HD void for_each_inside_part(const MeshesView& meshes, int m, const Ray& ray, float t_max, const F& f) {
-  float t[kMeshCrossings];
-  const int total = meshes.shapes[m].crossings(ray, 0.0f, kInfinity, t, kMeshCrossings);
-  const int n = total < kMeshCrossings ? total : kMeshCrossings;
-  for (int i = 1; i < n; ++i) {  // insertion sort: n is small
-    const float v = t[i];
-    int j = i - 1;
-    for (; j >= 0 && t[j] > v; --j) t[j + 1] = t[j];
-    t[j + 1] = v;
-  }
-  bool inside = (total % 2) == 1;
-  float from = 0.0f;
-  for (int i = 0; i <= n; ++i) {
-    const float to = i < n ? t[i] : kInfinity;
-    if (inside && from < t_max && !f(from, glm::min(to, t_max))) return;
-    if (to >= t_max) return;
-    inside = !inside;
-    from = to;
-  }
-}
 
 // Delta tracking through every mesh over [0, t_max]: true and the nearest
 // real collision in `hit` (which keeps the caller's if none is nearer).
@@ -75,11 +47,16 @@ PENUMBRA_HD inline bool mesh_delta_tracking(const MeshesView& meshes, const Ray&
   return collided;
 }
 
-// Ratio-tracking estimate of the meshes' transmittance along [0, t_max].
-PENUMBRA_HD inline float mesh_ratio_tracking(const MeshesView& meshes, const Ray& ray, float t_max, Pcg32& rng,
-                                             std::uint64_t& lookups) {
-  float transmittance = 1.0f;
-  for (int m = 0; m < meshes.count && transmittance > 0.0f; ++m) {
+// Ratio-tracking estimate of the meshes' transmittance of light along
+// [0, t_max], per channel: each mesh's extinction times its light_weight (1
+// - its transport colour) against its grey majorant, which bounds every
+// channel (light_weight <= 1). The roulette acts on the largest channel and
+// keeps the others' ratio to it; for grey media all three are the scalar
+// estimate (the same random numbers as one channel).
+PENUMBRA_HD inline vec3 mesh_ratio_tracking(const MeshesView& meshes, const Ray& ray, float t_max, Pcg32& rng,
+                                            std::uint64_t& lookups) {
+  vec3 transmittance(1.0f);
+  for (int m = 0; m < meshes.count && max_component(transmittance) > 0.0f; ++m) {
     const MeshMaterialView& mat = meshes.objects[m];
     const float majorant = mat.sigma_max;
     if (!(majorant > 0.0f)) continue;
@@ -88,7 +65,16 @@ PENUMBRA_HD inline float mesh_ratio_tracking(const MeshesView& meshes, const Ray
         t += exponential_step(rng, majorant);
         if (t >= b) return true;
         ++lookups;
-        if (!ratio_tracking_step(transmittance, mat.medium(ray.at(t)).a, majorant, rng)) return false;
+        const float sigma = mat.medium(ray.at(t)).a;
+        transmittance *= glm::max(vec3(0.0f), 1.0f - (sigma / majorant) * mat.light_weight);
+        const float largest = max_component(transmittance);
+        if (largest < kRatioRouletteThreshold) {
+          if (rng.next_float() * kRatioRouletteThreshold >= largest) {
+            transmittance = vec3(0.0f);
+            return false;
+          }
+          transmittance *= kRatioRouletteThreshold / largest;
+        }
       }
     });
   }
