@@ -13,11 +13,11 @@
 namespace penumbra {
 namespace {
 
-constexpr double kPiD = 3.14159265358979323846;
+constexpr double kBallPi = 3.14159265358979323846;
 
-double hg(double g, double cosine) {
+double ball_phase(double g, double cosine) {
   const double denom = 1.0 + g * g - 2.0 * g * cosine;
-  return (1.0 - g * g) / (4.0 * kPiD * denom * std::sqrt(denom));
+  return (1.0 - g * g) / (4.0 * kBallPi * denom * std::sqrt(denom));
 }
 
 // Light scattered exactly once inside the unit ball (beam along +z, unit
@@ -34,7 +34,7 @@ double once_scattered_radiance(double tau, double albedo, double g, glm::dvec3 p
     const double s = (i + 0.5) * length / kSteps;
     const glm::dvec3 y = point - s * w;
     const double depth = y.z + std::sqrt(std::max(0.0, 1.0 - y.x * y.x - y.y * y.y));
-    sum += tau * std::exp(-tau * s) * albedo * hg(g, w.z) * std::exp(-tau * depth);
+    sum += tau * std::exp(-tau * s) * albedo * ball_phase(g, w.z) * std::exp(-tau * depth);
   }
   return sum * length / kSteps;
 }
@@ -45,17 +45,17 @@ template <class Weight>
 double over_directions(double tau, double albedo, double g, glm::dvec3 point, const Weight& weight,
                        bool forward_only) {
   constexpr int kPolar = 120, kAzimuth = 64;
-  const double top = forward_only ? 0.5 * kPiD : kPiD;
+  const double top = forward_only ? 0.5 * kBallPi : kBallPi;
   double sum = 0.0;
   for (int i = 0; i < kPolar; ++i) {
     const double theta = (i + 0.5) * top / kPolar;
     for (int j = 0; j < kAzimuth; ++j) {
-      const double phi = (j + 0.5) * 2.0 * kPiD / kAzimuth;
+      const double phi = (j + 0.5) * 2.0 * kBallPi / kAzimuth;
       const glm::dvec3 w(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
       sum += weight(w) * once_scattered_radiance(tau, albedo, g, point, w) * std::sin(theta);
     }
   }
-  return sum * (top / kPolar) * (2.0 * kPiD / kAzimuth);
+  return sum * (top / kPolar) * (2.0 * kBallPi / kAzimuth);
 }
 
 // Single scattering inside the ball: the table's estimator limited to one
@@ -72,8 +72,8 @@ TEST(ScatteringTable, SingleScatteringMatchesQuadrature) {
         const glm::dvec3 view(std::sqrt(1.0 - mu * mu), 0.0, mu);
         const double exact = over_directions(
                                  tau, 0.6, g, glm::dvec3(0.0),
-                                 [&](glm::dvec3 w) { return hg(g, glm::dot(w, view)); }, false) /
-                             hg(g, mu);
+                                 [&](glm::dvec3 w) { return ball_phase(g, glm::dot(w, view)); }, false) /
+                             ball_phase(g, mu);
         const double table = scattered_in_scattering(once, tau, mu);
         std::printf("g %.1f tau %.1f mu %+.1f: J_s/p %.5f, quadrature %.5f\n", g, tau, mu, table, exact);
         EXPECT_NEAR(table, exact, 0.015 * exact + 1e-5) << "mu " << mu;
@@ -104,7 +104,7 @@ double forward_in_scattering(double tau, double albedo, double g, double mu, int
   auto uniform = [&] { return double(rng.next_float()); };
   double score = 0.0;
   for (int n = 0; n < photons; ++n) {
-    const double r = std::sqrt(uniform()), phi = 2.0 * kPiD * uniform();
+    const double r = std::sqrt(uniform()), phi = 2.0 * kBallPi * uniform();
     glm::dvec3 x(r * std::cos(phi), r * std::sin(phi), 0.0);
     x.z = -std::sqrt(std::max(0.0, 1.0 - x.x * x.x - x.y * x.y));
     glm::dvec3 d(0.0, 0.0, 1.0);
@@ -119,7 +119,7 @@ double forward_in_scattering(double tau, double albedo, double g, double mu, int
         const double disc = bd * bd - cd;
         if (disc > 0.0) {
           const double t0 = std::max(0.0, -bd - std::sqrt(disc)), t1 = std::min(flight, -bd + std::sqrt(disc));
-          if (t1 > t0) score += weight * (t1 - t0) * hg(g, glm::dot(d, view));
+          if (t1 > t0) score += weight * (t1 - t0) * ball_phase(g, glm::dot(d, view));
         }
       }
       if (flight >= boundary) break;
@@ -127,7 +127,7 @@ double forward_in_scattering(double tau, double albedo, double g, double mu, int
       weight *= albedo;
       if (weight < 1e-4) break;
       // New direction around d by the phase function.
-      const double xi = uniform(), az = 2.0 * kPiD * uniform();
+      const double xi = uniform(), az = 2.0 * kBallPi * uniform();
       double cosine = 1.0 - 2.0 * xi;
       if (g != 0.0) {
         const double s = (1.0 - g * g) / (1.0 - g + 2.0 * g * xi);
@@ -142,8 +142,8 @@ double forward_in_scattering(double tau, double albedo, double g, double mu, int
   }
   // Power pi enters (unit irradiance over the cross-section); the detector's
   // volume turns summed track length into mean radiance over directions.
-  const double volume = 4.0 / 3.0 * kPiD * kDetector * kDetector * kDetector;
-  return score * (kPiD / photons) / volume / hg(g, mu);
+  const double volume = 4.0 / 3.0 * kBallPi * kDetector * kDetector * kDetector;
+  return score * (kBallPi / photons) / volume / ball_phase(g, mu);
 }
 
 TEST(ScatteringTable, AllOrdersMatchForwardPhotonTracing) {
