@@ -16,7 +16,7 @@ base=${PENUMBRA_BASE_BIN:-}
 scene=${SCENE:-scenes/engine.json}
 size=${SIZE:-512x512}
 techniques=(emission-absorption phong shadow-rays filtered-sat sat-ao cone-shadows shadow-map deep-shadow-map cssm
-            occlusion-map)
+            ambient-scattering occlusion-map)
 args=()
 for t in "${techniques[@]}"; do args+=(--technique "$t"); done
 out=$(mktemp)

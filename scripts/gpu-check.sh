@@ -34,7 +34,7 @@ tests=$?
 
 echo "== bench: 1024x1024, 512^3 marschner-lobb (scenes/gpu-bench-512.json), 10 frames each"
 techniques=(emission-absorption phong shadow-rays shadow-map deep-shadow-map cssm filtered-sat sat-ao cone-shadows
-            occlusion-map)
+            ambient-scattering occlusion-map)
 args=()
 for t in "${techniques[@]}"; do args+=(--technique "$t"); done
 json=$(timeout 240 "$bin/penumbra" --device cuda bench "$scenes/gpu-bench-512.json" "${args[@]}" --frames 10)

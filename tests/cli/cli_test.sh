@@ -24,6 +24,7 @@ expect() {
 expect 0 "render" -- "$bin" --help
 expect 0 "shadow_density_scale" -- "$bin" techniques
 expect 0 "emission-absorption" -- "$bin" techniques
+expect 0 "scattering_albedo" -- "$bin" techniques   # ambient-scattering
 
 # Rendering a scene file to PNG and EXR.
 expect 0 "spheres.png" -- "$bin" render "$src/scenes/spheres.json" -o "$work/spheres.png" --size 32x24

@@ -12,6 +12,7 @@
 #include "penumbra/techniques/filtered_sat/filtered_sat.h"
 #include "penumbra/techniques/sat_ao/sat_ao.h"
 #include "penumbra/techniques/cone_shadows/cone_shadows.h"
+#include "penumbra/techniques/ambient_scattering/ambient_scattering.h"
 #include "penumbra/techniques/ipsvi/ipsvi.h"
 #include "penumbra/techniques/half_angle/half_angle.h"
 #include "penumbra/techniques/occlusion_map/occlusion_map.h"
@@ -57,6 +58,7 @@ const std::vector<TechniqueInfo>& technique_registry() {
         with_cuda_path(filtered_sat_info()),
         with_cuda_path(sat_ao_info()),
         with_cuda_path(cone_shadows_info()),
+        with_cuda_path(ambient_scattering_info()),
         ipsvi_info(),
         half_angle_info(),
         with_cuda_path(occlusion_map_info()),

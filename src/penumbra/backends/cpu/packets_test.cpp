@@ -131,7 +131,8 @@ ParameterSettings quick_params(const TechniqueInfo& info) {
 // Lighting (every render_lit technique, emission-absorption and phong).
 const std::set<std::string> kPacketTechniques = {"emission-absorption", "phong",      "shadow-rays",
                                                  "filtered-sat",        "sat-ao",     "cone-shadows",
-                                                 "shadow-map",          "deep-shadow-map", "cssm"};
+                                                 "ambient-scattering",  "shadow-map", "deep-shadow-map",
+                                                 "cssm"};
 
 // Prepares once (light-space structures do not depend on the packet mode;
 // building them once per scene rather than per mode keeps this test quick)
