@@ -66,7 +66,9 @@ out=$("$bin" bench "$src/scenes/spheres.json" --technique emission-absorption --
 for key in technique volume dims image tf_change_ms light_move_ms frame_ms_median frame_ms_min aux_bytes threads; do
   grep -q "\"$key\": " <<<"$out" || fail "bench output lacks \"$key\": $out"
 done
-grep -q '"passes_per_frame": 0}' <<<"$out" || fail "ray casters report no sweep passes: $out"
+[ "$(grep -c '"passes_per_frame": 0,' <<<"$out")" -eq 2 ] || fail "ray casters report no sweep passes: $out"
+# lane_utilisation is a share of the SIMD lanes: between 0 and 1.
+grep -Eq '"lane_utilisation": (0\.[0-9]+|1\.000)\}' <<<"$out" || fail "bench lacks a lane_utilisation in [0, 1]: $out"
 # convolution reports its slab count, about depth / slab distance.
 out=$("$bin" bench "$src/scenes/spheres.json" --technique convolution --frames 1 --size 16x16 --param slab_distance=2 2>&1)
 slabs=$(sed -n 's/.*"passes_per_frame": \([0-9]*\).*/\1/p' <<<"$out")
