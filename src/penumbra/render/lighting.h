@@ -58,7 +58,7 @@ PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Mask shading_normal(const RenderVi
   using F = typename L::Float;
   using V = typename L::Vec3;
   const V g = v.normals.texels
-                  ? v.normals.sample<L>(s.index)
+                  ? (s.cell ? v.normals.sample_at<L>(*s.cell) : v.normals.sample<L>(s.index))
                   : AnyVoxelSampler(v.volume.data, v.volume.dims, v.volume.type).gradient<L>(s.index) /
                         V(v.volume.spacing);
   const F len = length(g);

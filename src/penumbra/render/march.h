@@ -18,6 +18,7 @@
 #include "penumbra/base/ray.h"
 #include "penumbra/render/render_view.h"
 #include "penumbra/render/sample_cursor.h"
+#include "penumbra/volume/volume_sampler.h"
 
 #include <cstdint>
 
@@ -36,6 +37,9 @@ template <class L> struct SamplePointL {
   typename L::Vec3 color;      // TF colour
   typename L::Float sigma_t;   // extinction per world unit
   typename L::Vec3 ray_dir;    // unit direction of the viewing ray
+  // The volume sample's grid cell, where the marching loop has it (normals
+  // interpolate in the same cell), or null.
+  const GridCell<L>* cell = nullptr;
 };
 using SamplePoint = SamplePointL<ScalarLanes>;
 
@@ -284,13 +288,15 @@ PENUMBRA_HD void march_rays(const RenderView& v, const Sampler& sampler, Rays& r
     samples += std::uint64_t(count_true(has));
     ++steps;
     const V p = o + t * d;
-    const F value = sampler.template sample<L>(p);
+    const GridCell<L> cell(sampler.grid, p);
+    const F value = sampler.template sample_at<L>(cell);
     typename TransferFunctionView::Place<L> at;
     const F sigma_t = sample_extinction<L>(tf, sampler, value, at);
     const M lit = has & (sigma_t > 0.0f);
     if (none(lit)) continue;
     const F alpha = 1.0f - exp_nonpositive(-sigma_t * length);
-    const SamplePointL<L> s{world_origin + t * world_direction, p, value, tf.color<L>(at), sigma_t, world_direction};
+    const SamplePointL<L> s{world_origin + t * world_direction, p, value, tf.color<L>(at), sigma_t, world_direction,
+                            &cell};
     color += select(lit, (transmittance * alpha) * light_sample<L>(lighting, s, lit), V(0.0f));
     transmittance = select(lit, transmittance * (1.0f - alpha), transmittance);
     const M done = lit & (transmittance <= min_transmittance);

@@ -23,10 +23,13 @@ struct NormalView {
   // index-space positions: the trilinear interpolation of trilinear() on
   // 4-byte texels.
   template <class L> PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Vec3 sample(const typename L::Vec3& p) const {
+    return sample_at<L>(GridCell<L>(grid, p));
+  }
+  // The same in a cell of the volume's grid (the normals have the volume's dims).
+  template <class L> PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Vec3 sample_at(const GridCell<L>& cell) const {
     using F = typename L::Float;
     using X = typename L::Index;
     using V = typename L::Vec3;
-    const GridCell<L> cell(grid, p);
     const X& base = cell.base;
     const F &fx = cell.fx, &fy = cell.fy, &fz = cell.fz;
     const X sx(grid.stride_x), sy(grid.stride_y), sz(grid.stride_z);

@@ -54,20 +54,21 @@ template <class L> struct GridCell {
     const I ix = min(to_int_nonnegative(px), I(g.max_base.x));
     const I iy = min(to_int_nonnegative(py), I(g.max_base.y));
     const I iz = min(to_int_nonnegative(pz), I(g.max_base.z));
-    fx = min(px - to_float(ix), F(1.0f));
-    fy = min(py - to_float(iy), F(1.0f));
-    fz = min(pz - to_float(iz), F(1.0f));
+    // In [0, 1] without a clamp: p <= upper = max_base + 1 where an axis has
+    // two voxels or more, and p = ix = 0 where it has one.
+    fx = px - to_float(ix);
+    fy = py - to_float(iy);
+    fz = pz - to_float(iz);
     base = X(ix) + X(g.dims.x) * (X(iy) + X(g.dims.y) * X(iz));
   }
 };
 
-// Trilinear sample at index-space positions, clamped to the grid.
+// Trilinear sample in a grid cell (GridCell of the same grid).
 template <class L, class T>
-PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Float trilinear(const VoxelGrid& g, const T* data,
-                                                              const typename L::Vec3& p) {
+PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Float trilinear_at(const VoxelGrid& g, const T* data,
+                                                                 const GridCell<L>& cell) {
   using F = typename L::Float;
   using X = typename L::Index;
-  const GridCell<L> cell(g, p);
   const X& base = cell.base;
   const F &fx = cell.fx, &fy = cell.fy, &fz = cell.fz;
   F c000, c100, c010, c110, c001, c101, c011, c111;
@@ -82,6 +83,13 @@ PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Float trilinear(const VoxelGrid& g
   const F y0 = x00 + fy * (x10 - x00);
   const F y1 = x01 + fy * (x11 - x01);
   return y0 + fz * (y1 - y0);
+}
+
+// Trilinear sample at index-space positions, clamped to the grid.
+template <class L, class T>
+PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Float trilinear(const VoxelGrid& g, const T* data,
+                                                              const typename L::Vec3& p) {
+  return trilinear_at<L>(g, data, GridCell<L>(g, p));
 }
 
 // Central differences of the trilinear field with a one-voxel step,
@@ -122,6 +130,10 @@ template <class T> struct VolumeSampler {
   template <class L> PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Float sample(const typename L::Vec3& p) const {
     return trilinear<L>(grid, data, p);
   }
+  // The sample in a cell of `grid` (the marching loop keeps the cell for the normals).
+  template <class L> PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Float sample_at(const GridCell<L>& cell) const {
+    return trilinear_at<L>(grid, data, cell);
+  }
   PENUMBRA_HD PENUMBRA_FORCE_INLINE float operator()(vec3 p) const { return sample<ScalarLanes>(p); }
 
   template <class L> PENUMBRA_HD typename L::Vec3 gradient(const typename L::Vec3& p) const {
@@ -152,19 +164,23 @@ struct AnyVoxelSampler {
   PENUMBRA_HD bool all_finite() const { return type != VoxelType::Float32 && type != VoxelType::Float64; }
 
   template <class L> PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Float sample(const typename L::Vec3& p) const {
+    return sample_at<L>(GridCell<L>(grid, p));
+  }
+  // The sample in a cell of `grid` (the marching loop keeps the cell for the normals).
+  template <class L> PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Float sample_at(const GridCell<L>& c) const {
     switch (type) {
-      case VoxelType::UInt8: return trilinear<L>(grid, static_cast<const std::uint8_t*>(data), p);
-      case VoxelType::Int8: return trilinear<L>(grid, static_cast<const std::int8_t*>(data), p);
-      case VoxelType::UInt16: return trilinear<L>(grid, static_cast<const std::uint16_t*>(data), p);
-      case VoxelType::Int16: return trilinear<L>(grid, static_cast<const std::int16_t*>(data), p);
-      case VoxelType::Int32: return trilinear<L>(grid, static_cast<const std::int32_t*>(data), p);
-      case VoxelType::Float32: return trilinear<L>(grid, static_cast<const float*>(data), p);
+      case VoxelType::UInt8: return trilinear_at<L>(grid, static_cast<const std::uint8_t*>(data), c);
+      case VoxelType::Int8: return trilinear_at<L>(grid, static_cast<const std::int8_t*>(data), c);
+      case VoxelType::UInt16: return trilinear_at<L>(grid, static_cast<const std::uint16_t*>(data), c);
+      case VoxelType::Int16: return trilinear_at<L>(grid, static_cast<const std::int16_t*>(data), c);
+      case VoxelType::Int32: return trilinear_at<L>(grid, static_cast<const std::int32_t*>(data), c);
+      case VoxelType::Float32: return trilinear_at<L>(grid, static_cast<const float*>(data), c);
       case VoxelType::UInt32:
       case VoxelType::Float64: break;  // not packet types (packet_voxel_type)
     }
     if constexpr (L::kWidth == 1) {
-      if (type == VoxelType::UInt32) return trilinear<L>(grid, static_cast<const std::uint32_t*>(data), p);
-      return trilinear<L>(grid, static_cast<const double*>(data), p);
+      if (type == VoxelType::UInt32) return trilinear_at<L>(grid, static_cast<const std::uint32_t*>(data), c);
+      return trilinear_at<L>(grid, static_cast<const double*>(data), c);
     } else {
       return typename L::Float(0.0f);
     }

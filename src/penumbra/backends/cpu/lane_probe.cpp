@@ -33,6 +33,14 @@ __attribute__((flatten)) void run_lane_probe(const LaneProbe& probe) {
     unpack_lanes<L>(v.tf.color<L>(at), out);
     for (int i = 0; i < W; ++i) probe.tf[first + i] = vec4(out[i], s[i]);
     const F x = L::load(probe.numbers + first);
+    if (probe.others) {
+      const F y = L::load(probe.others + first);
+      float lo[W], hi[W], c[W];
+      L::store(min(x, y), lo);
+      L::store(max(x, y), hi);
+      L::store(clamp(x, F(-1.0f), F(1.0f)), c);
+      for (int i = 0; i < W; ++i) probe.min_max_clamp[first + i] = vec3(lo[i], hi[i], c[i]);
+    }
     float e[W], l[W], w[W];
     L::store(exp_nonpositive(-x), e);
     L::store(log_positive(x), l);

@@ -20,6 +20,10 @@ struct LaneProbe {
   vec3* exp_log_pow = nullptr;   // exp_nonpositive(-x), log_positive(x), pow_unit(x / (1 + x), 7.5)
   vec3* to_light = nullptr;      // sample_light(view->lights[0]) at the world position of the sample
   float* transmittance = nullptr;  // march_transmittance toward view->lights[0]
+  // min(numbers, others), max(numbers, others), clamp(numbers, -1, 1), when
+  // `others` (count entries) is set
+  const float* others = nullptr;
+  vec3* min_max_clamp = nullptr;
 };
 
 namespace N_AVX2 {

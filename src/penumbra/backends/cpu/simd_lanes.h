@@ -85,9 +85,14 @@ HWY_INLINE MaskV operator==(FloatV a, FloatV b) { return hn::Eq(a.v, b.v); }
 HWY_INLINE MaskV operator!=(FloatV a, FloatV b) { return hn::Ne(a.v, b.v); }
 
 HWY_INLINE FloatV select(MaskV m, FloatV a, FloatV b) { return hn::IfThenElse(m.m, a.v, b.v); }
-// glm::min(a, b) is (b < a) ? b : a; the same order keeps NaN and -0 alike.
-HWY_INLINE FloatV min(FloatV a, FloatV b) { return hn::IfThenElse(hn::Lt(b.v, a.v), b.v, a.v); }
-HWY_INLINE FloatV max(FloatV a, FloatV b) { return hn::IfThenElse(hn::Lt(a.v, b.v), b.v, a.v); }
+// glm::min(a, b) is (b < a) ? b : a and glm::max(a, b) (a < b) ? b : a. The
+// units are x86 only (AVX2, AVX-512), whose MINPS(x, y) is (x < y) ? x : y
+// and MAXPS(x, y) (x > y) ? x : y, and Highway maps Min/Max to them: with the
+// arguments swapped one instruction gives glm's result exactly, NaN and -0
+// included (lanes_test.cpp checks it).
+static_assert(HWY_TARGET == HWY_AVX2 || HWY_TARGET == HWY_AVX3, "min/max rely on x86 MINPS/MAXPS operand order");
+HWY_INLINE FloatV min(FloatV a, FloatV b) { return hn::Min(b.v, a.v); }
+HWY_INLINE FloatV max(FloatV a, FloatV b) { return hn::Max(b.v, a.v); }
 HWY_INLINE FloatV clamp(FloatV x, FloatV lo, FloatV hi) { return min(max(x, lo), hi); }
 HWY_INLINE FloatV floor(FloatV x) { return hn::Floor(x.v); }
 HWY_INLINE FloatV sqrt(FloatV x) { return hn::Sqrt(x.v); }
