@@ -4,6 +4,8 @@
 #include "penumbra/render/render_lit.h"
 #include "penumbra/render/scene_resources.h"
 #include "penumbra/techniques/filtered_sat/filtered_visibility.h"
+#include "penumbra/techniques/sat_common/plane_caches.h"
+#include "penumbra/techniques/sat_common/refined_cells.h"
 #include "penumbra/techniques/sat_common/table_dependencies.h"
 #include "penumbra/techniques/sat_common/visibility_cache.h"
 
@@ -17,6 +19,13 @@ namespace {
 // filter_voxels unset before issue 18.
 constexpr double kDefaultFilterVoxels = 5.0;
 constexpr double kMinFilterVoxels = 0.25, kMaxFilterVoxels = 256.0;  // filter_voxels' range
+// Refined cells: a rough cache cell gets a brick where its trilinear read
+// misses the visibility by more than this at a probe. Plane grids: nodes a
+// fifth of the light's filter width apart, between a quarter of a voxel and
+// a voxel (a penumbra on the floor is at most the filter wide). Chosen by
+// measurement (docs/filtered-sat.md, "Memory").
+constexpr float kProbeTolerance = 0.025f;
+constexpr float kPlaneNodesPerFilter = 5.0f, kMinPlaneNodeVoxels = 0.25f, kMaxPlaneNodeVoxels = 1.0f;
 
 FilterKernel kernel_named(const std::string& name, bool gaussian_light) {
   if (name == "auto") return gaussian_light ? FilterKernel::Gaussian : FilterKernel::Box;
@@ -45,11 +54,23 @@ class FilteredSat final : public Technique {
     built_ = false;
     const bool cache = params.flag("shadow_cache");
     cache_tolerance_ = float(params.number("cache_tolerance"));
-    // The render reads the tables without the cache, in cache cells whose
-    // texels differ by more than the tolerance, and at plane hits (outside
-    // the cache's box); otherwise each table lives only while the caches of
-    // the lights that read it are filled (issue 22, the paper's section 7).
-    const bool keep_tables = !cache || cache_tolerance_ < 1.0f || !scene.planes().empty();
+    const int refine = params.integer("cache_refinement");
+    if (refine == 1) {
+      throw InvalidArgument("cache_refinement", "must be 0 (the tables in rough cells) or at least 2; got 1");
+    }
+    // Cache cells whose texels differ by more than the tolerance read their
+    // refined bricks, built with the cache (or, without refinement or at a
+    // tolerance of 0, the tables).
+    const bool bricks = cache && refine > 0 && cache_tolerance_ > 0.0f && cache_tolerance_ < 1.0f;
+    // Plane hits read a grid per light and plane, filled with the light's
+    // cache, where every light with a table gets one on every plane.
+    const bool plane_grids = cache && planes_gridded(scene, voxel);
+    // The render reads the tables without the cache, in rough cells without
+    // bricks, and on planes without grids; otherwise each table lives only
+    // while the cache, bricks and plane grids of the lights that read it
+    // are filled (issue 22, the paper's section 7).
+    const bool keep_tables =
+        !cache || (cache_tolerance_ < 1.0f && !bricks) || (!scene.planes().empty() && !plane_grids);
     if (keep_tables && (!same_extinction || !tables_kept_ || previous != placements_)) {
       rebuilds_ += std::uint64_t(tables_.build(shadows, scene.lights(), cell, same_extinction));
     }
@@ -57,6 +78,8 @@ class FilteredSat final : public Technique {
     if (!keep_tables && !same_extinction) tables_.clear();  // no table of the old extinction may be reused
     inputs_ = std::move(inputs);
     table_resolution_ = resolution;
+    if (!bricks) refined_.clear();
+    if (!plane_grids) plane_caches_.clear();
     if (!cache) {
       caches_.clear();
       built_ = true;
@@ -67,15 +90,23 @@ class FilteredSat final : public Technique {
     // while it reads a table of the same placement (from the same extinction).
     ParameterValues cache_params = params;
     cache_params.set("sat_resolution", params.table().at("sat_resolution").default_value);
-    cache_params.set("cache_tolerance", params.table().at("cache_tolerance").default_value);  // read-time only
+    // Without bricks the tolerance is read at render time only.
+    if (!bricks) {
+      cache_params.set("cache_tolerance", params.table().at("cache_tolerance").default_value);
+      cache_params.set("cache_refinement", 0.0);
+    }
     // A light whose size changed has a new filter (when derived): its cache
     // is rebuilt, its table is not.
     auto stale = [&](std::size_t i) {
       return i >= previous.size() || !(previous[i] == placements_[i]) || i >= previous_shapes.size() ||
              previous_shapes[i] != light_shapes_[i];
     };
+    const std::size_t lights = placements_.size();
+    refined_.resize(lights);
+    plane_caches_.resize(lights);
+    cache_builds_.resize(lights, 0);
     rebuilds_ += std::uint64_t(caches_.update(
-        placements_.size(), scene.volume().world_box(),
+        lights, scene.volume().world_box(),
         visibility_cache_dims(scene.volume().dims(), float(params.number("cache_resolution"))), cache_params,
         [&](std::size_t light) { return placements_[light].kind != LightTableKind::None; }, stale,
         [&](std::size_t light, vec3 p) {
@@ -85,28 +116,72 @@ class FilteredSat final : public Technique {
           // Without kept tables: build (or keep, for a light sharing the
           // last one's CSAT) only the table this light reads.
           if (!keep_tables) rebuilds_ += std::uint64_t(tables_.build(shadows, scene.lights(), cell, true, int(light)));
+        },
+        [&](std::size_t light, const Volume& light_cache) {
+          // What else reads this light's table: its bricks and plane grids.
+          ++cache_builds_[light];
+          const FilteredVisibility direct = visibility();
+          if (bricks) {
+            refined_[light].build(light_cache, cache_tolerance_, kProbeTolerance, refine,
+                                  [&](vec3 p) { return direct.optical_depth(int(light), p); });
+          }
+          if (plane_grids) fill_plane_grids(scene, light, voxel);
         }));
+    for (std::size_t i = 0; i < lights; ++i) {
+      if (placements_[i].kind == LightTableKind::None) {
+        refined_[i].clear();
+        plane_caches_[i].clear();
+      }
+    }
+    // Planes that moved under caches that did not: their grids need the
+    // tables again (one at a time without kept tables).
+    if (plane_grids) {
+      const std::vector<Light>& scene_lights = scene.lights();
+      for (std::size_t i = 0; i < lights; ++i) {
+        if (placements_[i].kind == LightTableKind::None ||
+            plane_caches_[i].current({scene_lights[i]}, scene.planes(), plane_cell(i, voxel), cache_builds_[i])) {
+          continue;
+        }
+        if (!keep_tables) rebuilds_ += std::uint64_t(tables_.build(shadows, scene_lights, cell, true, int(i)));
+        fill_plane_grids(scene, i, voxel);
+      }
+    }
+    refined_views_.clear();
+    if (bricks) {
+      for (const RefinedCells& r : refined_) refined_views_.push_back(r.view());
+    }
+    plane_views_.clear();
+    if (plane_grids) {
+      for (const PlaneCaches& p : plane_caches_) plane_views_.push_back(p.view());
+    }
     if (!keep_tables) tables_.release(placements_.size());
     built_ = true;
   }
 
   void render(const Scene& scene, Image& image, RenderStats* stats) override {
     RenderView view = resources_.view(scene);
-    view.structures = rebuilds_;  // the tables' and caches' version, for device mirrors
+    view.structures = rebuilds_ + plane_builds_;  // the tables', caches' and plane grids' version, for device mirrors
     const Shading shading = scene.material().shading;
     const FilteredVisibility direct = visibility();
     if (caches_.built()) {
       // Without the tables every lookup reads the cache (clamped to its box).
       constexpr float kFar = std::numeric_limits<float>::max();
       const Box3 tables_box = tables_kept_ ? view.box : Box3{vec3(-kFar), vec3(kFar)};
-      const CachedFilteredVisibility cached{direct, caches_.views(), tables_box, cache_tolerance_};
+      const CachedFilteredVisibility cached{direct, caches_.views(), tables_box, cache_tolerance_,
+                                            refined_views_.empty() ? nullptr : refined_views_.data(),
+                                            plane_views_.empty() ? nullptr : plane_views_.data()};
       render_lit(view, cached, shading, image, stats);
     } else {
       render_lit(view, direct, shading, image, stats);
     }
   }
 
-  std::uint64_t aux_bytes() const override { return tables_.bytes() + caches_.bytes(); }
+  std::uint64_t aux_bytes() const override {
+    std::uint64_t bytes = tables_.bytes() + caches_.bytes();
+    for (const RefinedCells& r : refined_) bytes += r.bytes();
+    for (const PlaneCaches& p : plane_caches_) bytes += p.bytes();
+    return bytes;
+  }
 
   // Each table build and each light's cache build count one.
   std::uint64_t rebuilds() const override { return rebuilds_; }
@@ -144,6 +219,31 @@ class FilteredSat final : public Technique {
       if (filters_.size() < std::size_t(FilteredVisibility::kLightFilters)) filters_.push_back(make(width, shape.gaussian));
     }
   }
+  Box3 shadow_box(const Scene& scene, std::size_t light) const {
+    return filtered_shadow_box(scene.volume().world_box(), visibility().filter(int(light)), placements_[light].cell);
+  }
+  // Light i's plane grid spacing in world units.
+  float plane_cell(std::size_t light, float voxel) const {
+    return glm::clamp(light_shapes_[light].x / kPlaneNodesPerFilter, kMinPlaneNodeVoxels * voxel,
+                      kMaxPlaneNodeVoxels * voxel);
+  }
+  // Whether every light with a table gets a grid on every plane.
+  bool planes_gridded(const Scene& scene, float voxel) const {
+    for (std::size_t i = 0; i < placements_.size(); ++i) {
+      if (placements_[i].kind == LightTableKind::None) continue;
+      for (const Plane& plane : scene.planes()) {
+        if (!PlaneCaches::covers(scene.lights()[i], plane, shadow_box(scene, i), plane_cell(i, voxel))) return false;
+      }
+    }
+    return true;
+  }
+  // Light i's grids on the planes, from its table (which must live).
+  void fill_plane_grids(const Scene& scene, std::size_t light, float voxel) {
+    const FilteredVisibility direct = visibility();
+    plane_builds_ += std::uint64_t(plane_caches_[light].update(
+        {scene.lights()[light]}, scene.planes(), shadow_box(scene, light), plane_cell(light, voxel),
+        cache_builds_[light], [&](int, vec3 p) { return direct.transmittance(int(light), p); }));
+  }
   FilteredVisibility visibility() const {
     return FilteredVisibility::with(tables_.lookups().data(), filters_, shared_filter_);
   }
@@ -159,6 +259,12 @@ class FilteredSat final : public Technique {
   std::vector<LightTables::Placement> placements_;  // per light: the table it read in the last prepare
   double table_resolution_ = 0.0;
   LightVisibilityCaches caches_;  // one per light with a table
+  std::vector<RefinedCells> refined_;  // per light: its cache's rough cells, refined
+  std::vector<RefinedCellsView> refined_views_;  // per light; empty without bricks
+  std::vector<PlaneCaches> plane_caches_;        // per light: its grids on the planes
+  std::vector<PlaneCachesView> plane_views_;     // per light; empty without plane grids
+  std::vector<std::uint64_t> cache_builds_;      // per light: its cache builds, the plane grids' version
+  std::uint64_t plane_builds_ = 0;
   float cache_tolerance_ = 1.0f;
   std::uint64_t rebuilds_ = 0;
 };
@@ -185,10 +291,13 @@ TechniqueInfo filtered_sat_info() {
                               "store each light's transmittance on a grid instead of reading the tables per sample"),
           ParameterSpec::real("cache_resolution", 0.5, 0.05, 2.0,
                               "shadow cache grid size as a fraction of the data grid"),
-          ParameterSpec::real("cache_tolerance", 0.1, 0.0, 1.0,
-                              "cache cells whose texels differ by more than this read the tables instead "
-                              "(1 = always the cache: then, without a floor plane, each light's table is "
-                              "released once its cache is filled)"),
+          ParameterSpec::real("cache_tolerance", 0.05, 0.0, 1.0,
+                              "cache cells whose texels differ by more than this read their brick, a finer grid "
+                              "built with the cache (0 = the tables per sample, 1 = the cache everywhere); each "
+                              "light's table is released once its cache, bricks and floor grids are filled"),
+          ParameterSpec::integer("cache_refinement", 4, 0, 8,
+                                 "samples per cache cell edge in the bricks of rough cells (0 = the tables per "
+                                 "sample there, kept for the whole render; 1 is refused)"),
           ParameterSpec::real("shadow_density_scale", 1.0, 0.0, 100.0,
                               "multiplies the filtered optical depth (0 = unshadowed)"),
       }},

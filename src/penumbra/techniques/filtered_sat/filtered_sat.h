@@ -58,27 +58,39 @@
 //                         (Algorithm 1) instead of reading the tables per sample
 //   cache_resolution      that grid's size as a fraction of the data grid
 //   cache_tolerance       cache cells whose 8 texels differ by more than this
-//                         read the tables instead (1: the cache everywhere)
+//                         are rough: they read their bricks (1: the cache
+//                         everywhere, 0: the tables in every cell that varies)
+//   cache_refinement      texels per cell edge of a rough cell's brick (0: the
+//                         tables there instead, which then stay; 1 refused)
 //   shadow_density_scale  multiplies the filtered optical depth (Fig. 7b)
 // Passes
 //   prepare: the tables, each rebuilt when what it is made of changes: the
 //            data (or time step), the shadow TF's extinction, the clip
 //            planes, sat_resolution, or its own light's direction or
-//            position (never for a colour, an intensity, a floor plane or a
-//            render-only TF edit); then, with the cache, one transmittance
-//            grid per light, rebuilt when its table is, or when the filter,
-//            kernel, offset, density scale or cache resolution change (a
-//            light's size changes only its own derived filter and cache).
+//            position (never for a colour, an intensity or a render-only TF
+//            edit); then, with the cache, one transmittance grid per light,
+//            rebuilt when its table is, or when the filter, kernel, offset,
+//            density scale or cache settings change (a light's size changes
+//            only its own derived filter and cache). With each light's
+//            cache, while its table lives: bricks of its rough cells
+//            (sat_common/refined_cells.h: refine^3 16-bit optical depths,
+//            for the cells whose trilinear read misses the visibility by
+//            more than 0.025 at a probe) and a grid on each opaque plane
+//            (sat_common/plane_caches.h over the box grown by the patch's
+//            reach, nodes a fifth of the filter apart within 0.25-1 voxel).
 //            Tables are float residuals against double block corners
 //            (summed_area_table.h). When the render reads no table (the
-//            cache on, cache_tolerance 1, no floor plane), each light's
-//            table is built just before its cache and released after it
-//            (the paper's section 7), so memory holds the caches and at
-//            most one table; a light that moves gets its table rebuilt then
+//            cache on, bricks or cache_tolerance 1, a grid for every light
+//            on every plane: the defaults, unless a light grazes a plane),
+//            each light's table is built just before its cache and released
+//            after its bricks and plane grids (the paper's section 7), so
+//            memory holds the caches, bricks and grids and at most one
+//            table; a light that moves, a filter change or a plane move
+//            (for the grids) then rebuild the tables, one at a time
 //   render:  one ray-casting pass; per lit sample one cache read per light,
-//            or one table lookup (4 column sums for the box, 81 for the
-//            Gaussian) where the cache cell is not smooth; points outside
-//            the volume box (floors) always read the tables
+//            a brick read in rough cells (or one table lookup without
+//            bricks: 4 column sums for the box, 81 for the Gaussian); plane
+//            hits read the light's grid on that plane (the tables without)
 #include "penumbra/render/technique.h"
 
 namespace penumbra {

@@ -4,10 +4,10 @@
 #include "penumbra/base/error.h"
 #include "penumbra/base/memory_budget.h"
 #include "penumbra/render/scene_resources.h"
+#include "penumbra/techniques/filtered_sat/filtered_sat_test_scenes.h"
 #include "penumbra/techniques/filtered_sat/light_tables.h"
 #include "penumbra/techniques/filtered_sat/shadow_filter.h"
 #include "penumbra/techniques/registry.h"
-#include "penumbra/techniques/sat_common/visibility_cache.h"
 #include "test_scene.h"
 
 #include <gtest/gtest.h>
@@ -20,36 +20,9 @@
 namespace penumbra {
 namespace {
 
-using testing::procedural_scene;
+using testing::sat_spheres;
+using testing::sat_spheres_and_a_point_light;
 using testing::render_with;
-
-Scene lit_spheres(vec3 direction = vec3(0.4f, 0.6f, -1.0f)) {
-  Scene scene = procedural_scene("spheres", ivec3(40), 40);
-  TransferFunction tf({{0.0f, vec3(1.0f, 0.7f, 0.4f), 0.0f},
-                       {0.1f, vec3(1.0f, 0.7f, 0.4f), 0.0f},
-                       {0.4f, vec3(1.0f, 0.7f, 0.4f), 0.25f},
-                       {1.0f, vec3(0.9f, 0.9f, 1.0f), 0.6f}});
-  tf.set_range(vec2(0.0f, 1.0f));
-  scene.set_transfer_function(tf);
-  Light light;
-  light.direction = glm::normalize(direction);
-  scene.set_lights({light});
-  Material m;
-  m.ambient = 0.0f;
-  scene.set_material(m);
-  return scene;
-}
-
-// lit_spheres with a second light, a point light at the upper left.
-Scene lit_spheres_and_a_point_light() {
-  Scene scene = lit_spheres();
-  Light point;
-  point.type = LightType::Point;
-  point.position = vec3(-30.0f, -40.0f, 45.0f);
-  point.intensity = 4500.0f;
-  scene.set_lights({scene.lights()[0], point});
-  return scene;
-}
 
 // As the patch shrinks to a voxel, the mean optical depth over it becomes the
 // optical depth of the one shadow ray: the image error against shadow-rays
@@ -57,7 +30,7 @@ Scene lit_spheres_and_a_point_light() {
 // a voxel here, so that it is small).
 TEST(FilteredSat, ConvergesToShadowRaysAsTheFilterShrinks) {
   for (const LightType type : {LightType::Directional, LightType::Point}) {
-    Scene scene = lit_spheres();
+    Scene scene = sat_spheres();
     if (type == LightType::Point) {
       Light point;
       point.type = LightType::Point;
@@ -90,7 +63,7 @@ TEST(FilteredSat, ConvergesToShadowRaysAsTheFilterShrinks) {
 TEST(FilteredSat, ThreeOrthodirectionalLightsShareOneTable) {
   const mat3 rotations[] = {mat3(1.0f), mat3(glm::rotate(glm::mat4(1.0f), 0.6f, glm::normalize(vec3(1, 2, 3))))};
   for (int r = 0; r < 2; ++r) {
-    Scene scene = lit_spheres();
+    Scene scene = sat_spheres();
     std::vector<Light> lights(3);
     const vec3 axes[3] = {vec3(0, 0, -1), vec3(1, 0, 0), vec3(0, -1, 0)};
     for (int i = 0; i < 3; ++i) {
@@ -146,28 +119,36 @@ TEST(FilteredSat, ThreeOrthodirectionalLightsShareOneTable) {
   }
 }
 
-TEST(FilteredSat, FilterChangesNeverRebuildTheTables) {
+// With the tables kept (no cache, or a cache whose rough cells read them:
+// cache_refinement 0) a filter change rebuilds at most the cache; at the
+// defaults the tables are released once the cache is filled, so it rebuilds
+// the table with the cache.
+TEST(FilteredSat, FilterChangesNeverRebuildKeptTables) {
   const TechniqueInfo& info = find_technique("filtered-sat");
-  for (const bool cache : {false, true}) {
-    Scene scene = lit_spheres();
+  enum class Mode { NoCache, KeptTables, Defaults };
+  for (const Mode mode : {Mode::NoCache, Mode::KeptTables, Mode::Defaults}) {
+    const bool cache = mode != Mode::NoCache;
+    Scene scene = sat_spheres();
     ParameterValues params(info.parameters);
     params.set("shadow_cache", cache);
+    if (mode == Mode::KeptTables) params.set("cache_refinement", 0.0);
     auto t = info.create();
     t->prepare(scene, params);
     const std::uint64_t built = t->rebuilds();
     EXPECT_EQ(built, cache ? 2u : 1u);  // tables (+ cache)
+    // What a filter change rebuilds: nothing, the cache, or table and cache.
+    const std::uint64_t filter_change = mode == Mode::NoCache ? 0u : mode == Mode::KeptTables ? 1u : 2u;
     Image narrow, wide;
     t->render(scene, narrow);
     params.set("filter_voxels", 12.0);
     t->prepare(scene, params);
     t->render(scene, wide);
-    // Without the cache nothing is rebuilt; with it only the cache is.
-    EXPECT_EQ(t->rebuilds(), built + (cache ? 1u : 0u));
+    EXPECT_EQ(t->rebuilds(), built + filter_change);
     EXPECT_GT(rmse(narrow, wide), 1e-3) << "the filter must change the image";
     params.set("kernel", std::string("gaussian"));
     params.set("shadow_density_scale", 0.5);
     t->prepare(scene, params);
-    EXPECT_EQ(t->rebuilds(), built + (cache ? 2u : 0u));
+    EXPECT_EQ(t->rebuilds(), built + 2 * filter_change);
     // Camera and material changes rebuild nothing; a light move, an
     // extinction edit and clip planes rebuild the tables.
     Camera camera = scene.camera();
@@ -175,7 +156,7 @@ TEST(FilteredSat, FilterChangesNeverRebuildTheTables) {
     scene.set_camera(camera);
     scene.set_material(Material{});
     t->prepare(scene, params);
-    EXPECT_EQ(t->rebuilds(), built + (cache ? 2u : 0u));
+    EXPECT_EQ(t->rebuilds(), built + 2 * filter_change);
     const std::uint64_t before = t->rebuilds();
     Light moved = scene.lights()[0];
     moved.direction = glm::normalize(vec3(-0.3f, 0.6f, -1.0f));
@@ -197,40 +178,54 @@ TEST(FilteredSat, FilterChangesNeverRebuildTheTables) {
 }
 
 // Issue 22: only what a table depends on rebuilds it. A light's colour and
-// intensity, a floor plane, re-setting equal lights or TF, and a render-only
-// TF edit while a separate shadow TF is set rebuild nothing; moving one of
-// two lights rebuilds that light's table and cache only; a shadow-TF edit
-// rebuilds both lights' tables and caches.
+// intensity, re-setting equal lights or TF, and a render-only TF edit while
+// a separate shadow TF is set rebuild nothing; moving one of two lights
+// rebuilds that light's table and cache only; a shadow-TF edit rebuilds both
+// lights' tables and caches. A floor move rebuilds nothing the baselines
+// count; filtered-sat's floor grids need its tables, which the defaults
+// release once the caches are filled: they are rebuilt, one at a time, and
+// the 3D caches are not (with the tables kept, cache_refinement 0, nothing).
 TEST(FilteredSat, OnlyWhatATableDependsOnRebuildsIt) {
-  for (const std::string technique : {"filtered-sat", "cone-shadows", "sat-ao"}) {
-    Scene scene = lit_spheres_and_a_point_light();
+  for (const std::string technique : {"filtered-sat", "filtered-sat kept", "cone-shadows", "sat-ao"}) {
+    const bool filtered = technique.rfind("filtered-sat", 0) == 0;
+    Scene scene = sat_spheres_and_a_point_light();
     scene.set_shadow_transfer_function(scene.transfer_function());
-    const TechniqueInfo& info = find_technique(technique);
-    const ParameterValues params(info.parameters);
+    scene.set_planes({Plane{vec3(0.0f, 0.0f, -30.0f), vec3(0.0f, 0.0f, 1.0f), vec3(0.8f)}});
+    const TechniqueInfo& info = find_technique(filtered ? "filtered-sat" : technique);
+    ParameterValues params(info.parameters);
+    if (technique == "filtered-sat kept") params.set("cache_refinement", 0.0);
     auto t = info.create();
     t->prepare(scene, params);
     const bool per_light = technique != "sat-ao";
     // Tables: filtered-sat one per light here, the baselines one in all;
     // caches: one per light (sat-ao: one).
-    const std::uint64_t tables = technique == "filtered-sat" ? 2u : 1u, caches = per_light ? 2u : 1u;
+    const std::uint64_t tables = filtered ? 2u : 1u, caches = per_light ? 2u : 1u;
     EXPECT_EQ(t->rebuilds(), tables + caches) << technique;
     const std::uint64_t built = t->rebuilds();
     std::vector<Light> lights = scene.lights();
     lights[0].color = vec3(0.2f, 0.5f, 1.0f);
     lights[1].intensity = 900.0f;
     scene.set_lights(lights);
-    scene.set_planes({Plane{vec3(0.0f, 0.0f, -30.0f), vec3(0.0f, 0.0f, 1.0f), vec3(0.8f)}});
-    scene.set_planes({Plane{vec3(0.0f, 0.0f, -35.0f), vec3(0.0f, 0.0f, 1.0f), vec3(0.5f)}});
     TransferFunction render_only = scene.transfer_function();
     render_only.set_density_scale(0.5f);
     scene.set_transfer_function(render_only);
     scene.set_shadow_transfer_function(scene.shadow_transfer_function());
     t->prepare(scene, params);
-    EXPECT_EQ(t->rebuilds(), built) << technique << ": colour, intensity, floor or render TF rebuilt something";
+    EXPECT_EQ(t->rebuilds(), built) << technique << ": colour, intensity or render TF rebuilt something";
+    scene.set_planes({Plane{vec3(0.0f, 0.0f, -35.0f), vec3(0.0f, 0.0f, 1.0f), vec3(0.5f)}});
+    t->prepare(scene, params);
+    EXPECT_EQ(t->rebuilds(), built + (technique == "filtered-sat" ? tables : 0u)) << technique << ": floor move";
+    Image image, fresh_image;
+    t->render(scene, image);
+    auto fresh = info.create();
+    fresh->prepare(scene, params);
+    fresh->render(scene, fresh_image);
+    EXPECT_EQ(rmse(image, fresh_image), 0.0) << technique;
+    const std::uint64_t floor_moved = t->rebuilds();
     lights[1].position += vec3(5.0f, 0.0f, 0.0f);
     scene.set_lights(lights);
     t->prepare(scene, params);
-    EXPECT_EQ(t->rebuilds(), built + (technique == "filtered-sat" ? 2u : per_light ? 1u : 0u)) << technique;
+    EXPECT_EQ(t->rebuilds(), floor_moved + (filtered ? 2u : per_light ? 1u : 0u)) << technique;
     TransferFunction shadow = *scene.shadow_transfer_function();
     shadow.set_density_scale(2.0f);
     scene.set_shadow_transfer_function(shadow);
@@ -238,72 +233,6 @@ TEST(FilteredSat, OnlyWhatATableDependsOnRebuildsIt) {
     t->prepare(scene, params);
     EXPECT_EQ(t->rebuilds(), moved + tables + caches) << technique;
   }
-}
-
-// Issue 22, memory: with the cache read everywhere (cache_tolerance 1) and
-// no floor, nothing reads the tables at render time, so each table lives
-// only while its lights' caches are filled: what stays is one float cache
-// per light, cache_resolution^3 * 4 bytes per voxel per light (0.5 bytes at
-// the default 0.5), 16 MiB for a 256^3 volume with a directional and a
-// point light (the issue's target: 32 MiB). The image is that of the kept
-// tables at the same settings; a light that moves gets its table rebuilt
-// (and only its cache), a colour change rebuilds nothing; a floor or a
-// tolerance below 1 brings the tables back.
-TEST(FilteredSat, TablesAreReleasedOnceTheCachesAreFilled) {
-  Scene scene = lit_spheres_and_a_point_light();
-  const TechniqueInfo& info = find_technique("filtered-sat");
-  ParameterValues released(info.parameters);
-  released.set("cache_tolerance", 1.0);
-  auto t = info.create();
-  t->prepare(scene, released);
-  EXPECT_EQ(t->rebuilds(), 4u);  // two tables, two caches
-  const ivec3 dims = visibility_cache_dims(scene.volume().dims(), 0.5f);
-  const std::uint64_t cache_bytes = std::uint64_t(dims.x) * dims.y * dims.z * sizeof(float);
-  EXPECT_EQ(t->aux_bytes(), 2 * cache_bytes);
-  const ivec3 data = scene.volume().dims();
-  const double per_voxel_per_light = double(cache_bytes) / (double(data.x) * data.y * data.z);
-  const double at_256 = 2.0 * per_voxel_per_light * 256.0 * 256.0 * 256.0 / (1024.0 * 1024.0);
-  std::printf("released: %.3f bytes per voxel per light, %.1f MiB for 256^3 with two lights\n", per_voxel_per_light,
-              at_256);
-  EXPECT_LT(at_256, 32.0);
-  Image image;
-  t->render(scene, image);
-
-  // The same image from kept tables (a tolerance just below 1 keeps them;
-  // no cache cell's texels differ that much here).
-  ParameterValues almost = released;
-  almost.set("cache_tolerance", 0.9999);
-  auto kept = info.create();
-  kept->prepare(scene, almost);
-  EXPECT_GT(kept->aux_bytes(), 2 * cache_bytes);
-  Image kept_image;
-  kept->render(scene, kept_image);
-  EXPECT_LT(rmse(image, kept_image), 1e-6);
-  // A floor is lit from the tables: they stay.
-  Scene with_floor = scene;
-  with_floor.set_planes({Plane{vec3(0.0f, 0.0f, -30.0f), vec3(0.0f, 0.0f, 1.0f), vec3(0.5f)}});
-  auto floor = info.create();
-  floor->prepare(with_floor, released);
-  EXPECT_EQ(floor->aux_bytes(), kept->aux_bytes());
-
-  std::vector<Light> lights = scene.lights();
-  lights[0].color = vec3(0.3f, 0.6f, 1.0f);
-  scene.set_lights(lights);
-  t->prepare(scene, released);
-  EXPECT_EQ(t->rebuilds(), 4u);
-  lights[1].position += vec3(6.0f, 0.0f, 0.0f);
-  scene.set_lights(lights);
-  t->prepare(scene, released);
-  EXPECT_EQ(t->rebuilds(), 6u);  // that light's table and cache
-  EXPECT_EQ(t->aux_bytes(), 2 * cache_bytes);
-  t->render(scene, image);
-  EXPECT_LT(rmse(image, render_with(scene, "filtered-sat", {{"cache_tolerance", 1.0}})), 1e-6);
-
-  // Back to the default tolerance: the tables are needed again.
-  t->prepare(scene, ParameterValues(info.parameters));
-  EXPECT_GT(t->aux_bytes(), 2 * cache_bytes);
-  t->render(scene, image);
-  EXPECT_LT(rmse(image, render_with(scene, "filtered-sat")), 1e-6);
 }
 
 // A time series re-prepares on a time-step change with no other action: the
@@ -321,7 +250,7 @@ TEST(FilteredSat, TimeSeriesFollowsTheTimeStep) {
         }
   }
   series->center_at_origin();
-  Scene scene = lit_spheres(vec3(0.0f, 0.0f, -1.0f));
+  Scene scene = sat_spheres(vec3(0.0f, 0.0f, -1.0f));
   scene.set_volume(series, 0);
   scene.set_planes({Plane{vec3(0.0f, 0.0f, -13.0f), vec3(0.0f, 0.0f, 1.0f), vec3(0.8f)}});
   scene.set_camera(Camera::framing(series->world_box(), vec3(0.3f, -1.0f, 0.6f)));
@@ -345,7 +274,7 @@ TEST(FilteredSat, TimeSeriesFollowsTheTimeStep) {
 // resolution); interpolating it instead of looking up per sample changes the
 // image by the interpolation error only.
 TEST(FilteredSat, CacheMatchesPerSampleLookups) {
-  Scene scene = lit_spheres();
+  Scene scene = sat_spheres();
   Light point;
   point.type = LightType::Point;
   point.position = vec3(4.0f, -3.0f, 2.0f);  // inside the volume
@@ -361,17 +290,19 @@ TEST(FilteredSat, CacheMatchesPerSampleLookups) {
 }
 
 TEST(FilteredSat, ZeroDensityScaleIsUnshadowedSingleScattering) {
-  const Scene scene = lit_spheres();
+  const Scene scene = sat_spheres();
   EXPECT_LT(rmse(render_with(scene, "filtered-sat", {{"shadow_density_scale", 0.0}}),
                  render_with(scene, "shadow-rays", {{"shadow_density_scale", 0.0}})),
             1e-6);
 }
 
 TEST(FilteredSat, BadParametersAndBudgetsAreTypedErrors) {
-  const Scene scene = lit_spheres();
+  const Scene scene = sat_spheres();
   EXPECT_THROW(render_with(scene, "filtered-sat", {{"kernel", std::string("tent")}}), InvalidArgument);
   EXPECT_THROW(render_with(scene, "filtered-sat", {{"filter_voxels", 0.0}}), InvalidArgument);
   EXPECT_THROW(render_with(scene, "filtered-sat", {{"sat_resolution", 50.0}}), InvalidArgument);
+  EXPECT_THROW(render_with(scene, "filtered-sat", {{"cache_refinement", 1.0}}), InvalidArgument);
+  EXPECT_THROW(render_with(scene, "filtered-sat", {{"cache_refinement", 9.0}}), InvalidArgument);
   const std::uint64_t budget = memory_budget_bytes();
   set_memory_budget_bytes(64 * 1024);
   EXPECT_THROW(render_with(scene, "filtered-sat"), OutOfMemoryBudget);

@@ -5,6 +5,8 @@
 #include "penumbra/render/lighting.h"
 #include "penumbra/scene/light.h"
 #include "penumbra/techniques/filtered_sat/light_tables.h"
+#include "penumbra/techniques/sat_common/plane_caches.h"
+#include "penumbra/techniques/sat_common/refined_cells.h"
 #include "penumbra/volume/volume_sampler.h"
 #include "penumbra/volume/volume_view.h"
 
@@ -41,12 +43,24 @@ struct FilteredVisibility {
   PENUMBRA_HD const ShadowFilter& filter(int light) const {
     return filters[light < kLightFilters ? light : kLightFilters];
   }
-  PENUMBRA_HD float transmittance(int light, vec3 p) const {
+  // The filtered optical depth times the density scale.
+  PENUMBRA_HD float optical_depth(int light, vec3 p) const {
     const ShadowFilter& f = filter(light);
-    return exp_nonpositive(-f.density_scale * filtered_optical_depth(lights[light], f, p));
+    return f.density_scale * filtered_optical_depth(lights[light], f, p);
   }
+  PENUMBRA_HD float transmittance(int light, vec3 p) const { return exp_nonpositive(-optical_depth(light, p)); }
   PENUMBRA_HD vec3 operator()(int light, vec3 p, const LightSample&) const { return vec3(transmittance(light, p)); }
 };
+
+// The volume box grown so that beyond its projection along a light the
+// filtered visibility is 1 (the plane grids' region): a sample's patch
+// reaches sqrt(2) half-widths sideways (its corners), and a table lookup's
+// interpolation two table cells more. Unlike a cone ending where its axis
+// leaves the box, a patch beside the box's shadow still sees it.
+inline Box3 filtered_shadow_box(const Box3& box, const ShadowFilter& filter, float table_cell) {
+  const float reach = 1.41421356f * filter.half_width + 2.0f * table_cell;
+  return Box3{box.lower - vec3(reach), box.upper + vec3(reach)};
+}
 
 // A trilinear read of a float cache at world positions, and the spread
 // (largest minus smallest) of the 8 texels it interpolates: a bound on how
@@ -78,23 +92,66 @@ PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Float cache_read_with_spread(const
   return y0 + cell.fz * (y1 - y0);
 }
 
-// Cache lookups inside the volume box where the cache is smooth; the tables
-// elsewhere: outside the box (plane hits), and in cache cells whose texels
-// differ by more than `tolerance` (where the transmittance jumps, at lit
-// surfaces, interpolating it would smear the shadow of the material behind
-// the surface onto the surface; issue 22). A tolerance of 1 or more reads
-// the cache everywhere inside the box.
+// A rough cache cell's refined brick (refined_cells.h), or the cache's own
+// trilinear read in a cell without one; the lane-by-lane form of the rough
+// lanes of CachedFilteredVisibility.
+struct RefinedCacheRead {
+  const VolumeView* caches = nullptr;
+  const RefinedCellsView* refined = nullptr;
+  PENUMBRA_HD vec3 operator()(int light, vec3 p, const LightSample&) const {
+    float value;
+    if (!refined[light].sample(caches[light], p, value)) value = sample_world<ScalarLanes>(caches[light], p);
+    return vec3(value);
+  }
+};
+
+// Cache lookups inside the volume box where the cache is smooth, the tables
+// outside it. In cache cells whose texels differ by more than `tolerance`
+// (where the transmittance jumps, at lit surfaces, interpolating it would
+// smear the shadow of the material behind the surface onto the surface;
+// issue 22): the cell's refined brick, or the tables without bricks
+// (`refined` null). A tolerance of 1 or more reads the cache everywhere
+// inside the box. Plane hits read the light's grid on that plane
+// (`planes`), or the tables where it has none.
 struct CachedFilteredVisibility {
   FilteredVisibility direct;
   const VolumeView* caches = nullptr;  // per light; data == nullptr for lights without a cache
   Box3 box;
   float tolerance = 1.0f;
+  const RefinedCellsView* refined = nullptr;  // per light, or null: the tables in rough cells
+  const PlaneCachesView* planes = nullptr;    // per light (its light 0), or null: the tables on planes
 
   template <class Mirror> CachedFilteredVisibility on_device(Mirror& m) const {
+    const RefinedCellsView* device_refined = nullptr;
+    if (refined) {
+      std::vector<RefinedCellsView> copy(refined, refined + m.light_count());
+      for (RefinedCellsView& r : copy) {
+        if (r.refine <= 0) continue;
+        const std::size_t blocks = std::size_t(r.blocks.x) * r.blocks.y * r.blocks.z;
+        const std::size_t n = std::size_t(r.refine);
+        r.block_first = m.structure(r.block_first, blocks, "the shadow caches' refined cells");
+        r.block_mask = m.structure(r.block_mask, blocks, "the shadow caches' refined cells");
+        r.texels = r.bricks > 0 ? m.structure(r.texels, std::size_t(r.bricks) * n * n * n,
+                                              "the shadow caches' refined cells")
+                                : nullptr;
+      }
+      device_refined = m.frame(copy, "the shadow caches' refined cells");
+    }
+    const PlaneCachesView* device_planes = nullptr;
+    if (planes) {
+      std::vector<PlaneCachesView> copy(planes, planes + m.light_count());
+      for (PlaneCachesView& p : copy) p = p.on_device(m);
+      device_planes = m.frame(copy, "the plane shadow caches");
+    }
     return CachedFilteredVisibility{direct.on_device(m), m.volumes(caches, m.light_count(), "the shadow caches"), box,
-                                    tolerance};
+                                    tolerance, device_refined, device_planes};
   }
 
+  // A point on opaque plane `plane`: the light's grid there, or the tables.
+  PENUMBRA_HD vec3 plane(int light, int plane, vec3 p, const LightSample& ls) const {
+    if (planes && planes[light].has(0, plane)) return vec3(planes[light].sample(0, plane, p));
+    return direct(light, p, ls);
+  }
   PENUMBRA_HD vec3 operator()(int light, vec3 p, const LightSample& ls) const {
     return lanes<ScalarLanes>(light, p, ls, true);
   }
@@ -107,13 +164,20 @@ struct CachedFilteredVisibility {
     if (!cache.data) return light_visibility<L>(direct, light, p, ls, active);
     F spread;
     const F cached = cache_read_with_spread<L>(cache, p, spread);
-    const auto needs_tables = active & (!box_contains<L>(box, p) | (spread > tolerance));
+    using M = typename L::Mask;
+    const M outside = active & !box_contains<L>(box, p);
+    const M rough = active & !outside & (spread > tolerance);
+    const M tables = refined ? outside : M(outside | rough);
+    const M bricks = refined ? rough : M(false);
     if constexpr (L::kWidth == 1) {
-      return needs_tables ? direct(light, p, ls) : V(cached);
+      if (tables) return direct(light, p, ls);
+      if (bricks) return RefinedCacheRead{caches, refined}(light, p, ls);
+      return V(cached);
     } else {
       V result(cached);
-      if (any(needs_tables)) {
-        result = select(needs_tables, light_visibility<L>(direct, light, p, ls, needs_tables), result);
+      if (any(tables)) result = select(tables, light_visibility<L>(direct, light, p, ls, tables), result);
+      if (any(bricks)) {
+        result = select(bricks, light_visibility<L>(RefinedCacheRead{caches, refined}, light, p, ls, bricks), result);
       }
       return result;
     }

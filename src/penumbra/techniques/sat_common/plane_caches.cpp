@@ -49,6 +49,19 @@ PlaneCacheView PlaneCaches::layout(const Light& light, const Plane& plane, const
   return c;
 }
 
+std::vector<vec4> PlaneCaches::key(const std::vector<Light>& lights, const std::vector<Plane>& planes, float cell) {
+  std::vector<vec4> key;
+  for (const Plane& p : planes) {
+    key.push_back(vec4(p.point, 0.0f));
+    key.push_back(vec4(p.normal, 0.0f));
+  }
+  for (const Light& l : lights) {
+    key.push_back(vec4(l.position, float(l.type)));
+    key.push_back(vec4(l.direction, cell));
+  }
+  return key;
+}
+
 void PlaneCaches::clear() {
   views_.clear();
   texels_.clear();

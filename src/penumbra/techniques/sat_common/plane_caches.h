@@ -9,11 +9,13 @@
 // lights). A technique whose march starts only where the light's axis ray
 // crosses the volume box (cone-shadows: the cone ends where its axis leaves
 // the box) sees nothing there outside that rectangle, so a read outside it is
-// 1; inside, it is bilinear between the grid's nodes. A point light for which
-// some corner does not lie between the light and the plane (the shadow
-// reaches to infinity), or a light so oblique that the rectangle needs more
-// than kMaxSide nodes a side, gets no grid, and its plane points are lit
-// directly.
+// 1; inside, it is bilinear between the grid's nodes. A technique whose
+// visibility reaches beyond the box's projection passes a grown box
+// (filtered-sat: its patch's reach, filtered_shadow_box). A point light for
+// which some corner does not lie between the light and the plane (the
+// shadow reaches to infinity), or a light so oblique that the rectangle
+// needs more than kMaxSide nodes a side, gets no grid, and its plane points
+// are lit directly.
 #include "penumbra/base/math.h"
 #include "penumbra/scene/light.h"
 #include "penumbra/scene/plane.h"
@@ -85,6 +87,15 @@ class PlaneCaches {
   template <class Visibility>
   bool update(const std::vector<Light>& lights, const std::vector<Plane>& planes, const Box3& box, float cell,
               std::uint64_t version, const Visibility& visibility);
+  // Whether update with these arguments would keep the grids as they are.
+  bool current(const std::vector<Light>& lights, const std::vector<Plane>& planes, float cell,
+               std::uint64_t version) const {
+    return version == version_ && key(lights, planes, cell) == key_;
+  }
+  // Whether update would give `light` a grid on `plane`.
+  static bool covers(const Light& light, const Plane& plane, const Box3& box, float cell) {
+    return layout(light, plane, box, cell).dims.x > 0;
+  }
   void clear();
 
   PlaneCachesView view() const;
@@ -93,6 +104,8 @@ class PlaneCaches {
  private:
   // The rectangle of one light on one plane (dims.x == 0: none), texels not filled.
   static PlaneCacheView layout(const Light& light, const Plane& plane, const Box3& box, float cell);
+  // What the grids are built for: the planes' points and normals, the lights' placements, the cell.
+  static std::vector<vec4> key(const std::vector<Light>& lights, const std::vector<Plane>& planes, float cell);
 
   std::vector<PlaneCacheView> views_;
   std::vector<float> texels_;
@@ -111,17 +124,8 @@ namespace penumbra {
 template <class Visibility>
 bool PlaneCaches::update(const std::vector<Light>& lights, const std::vector<Plane>& planes, const Box3& box,
                          float cell, std::uint64_t version, const Visibility& visibility) {
-  std::vector<vec4> key;
-  for (const Plane& p : planes) {
-    key.push_back(vec4(p.point, 0.0f));
-    key.push_back(vec4(p.normal, 0.0f));
-  }
-  for (const Light& l : lights) {
-    key.push_back(vec4(l.position, float(l.type)));
-    key.push_back(vec4(l.direction, cell));
-  }
-  if (version == version_ && key == key_) return false;
-  key_ = std::move(key);
+  if (current(lights, planes, cell, version)) return false;
+  key_ = key(lights, planes, cell);
   version_ = version;
   plane_count_ = int(planes.size());
   light_count_ = int(lights.size());

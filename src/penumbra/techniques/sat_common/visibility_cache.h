@@ -63,6 +63,15 @@ class LightVisibilityCaches {
   int update(std::size_t light_count, const Box3& box, ivec3 dims, const ParameterValues& params,
              const HasCache& has_cache, const Stale& stale, const Visibility& visibility,
              const BeforeBuild& before_build) {
+    return update(light_count, box, dims, params, has_cache, stale, visibility, before_build,
+                  [](std::size_t, const Volume&) {});
+  }
+  // after_build(i, cache) runs just after light i's cache is built, while
+  // what before_build(i) built still lives (filtered-sat's refined cells).
+  template <class HasCache, class Stale, class Visibility, class BeforeBuild, class AfterBuild>
+  int update(std::size_t light_count, const Box3& box, ivec3 dims, const ParameterValues& params,
+             const HasCache& has_cache, const Stale& stale, const Visibility& visibility,
+             const BeforeBuild& before_build, const AfterBuild& after_build) {
     const bool all = !built_ || !(params == params_) || dims != dims_ || box.lower != box_.lower ||
                      box.upper != box_.upper;
     caches_.resize(light_count);
@@ -75,6 +84,7 @@ class LightVisibilityCaches {
       caches_[i].reset();  // free the old cache first
       before_build(i);
       caches_[i].emplace(build_visibility_cache(box, dims, [&](vec3 p) { return visibility(i, p); }));
+      after_build(i, *caches_[i]);
       ++count;
     }
     views_.assign(light_count, VolumeView{});
