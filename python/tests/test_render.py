@@ -82,7 +82,10 @@ def test_updates_rebuild_only_what_depends_on_the_change():
 
     assert renderer.update(params={"filter_voxels": 15}) == ["params"]
     renderer.render()
-    assert renderer.stats["rebuilds"] == after_tf + 1  # the filter changes the cache, not the tables
+    # The filter changes the cache, not the tables; but the defaults release
+    # the tables once the cache is filled, so the one light's table is built
+    # again to fill the new cache (issue 22): two rebuilds.
+    assert renderer.stats["rebuilds"] == after_tf + 2
     assert renderer.params["filter_voxels"] == 15
 
 
