@@ -77,17 +77,24 @@ TEST(Math, LogPositiveMatchesStdLog) {
 }
 
 TEST(Math, PowUnitMatchesStdPowForHighlights) {
-  for (float s : {1.0f, 5.0f, 20.0f, 128.0f}) {
+  // Whole shininess takes repeated squaring, the rest exp(s ln x).
+  for (float s : {1.0f, 2.0f, 5.0f, 20.0f, 128.0f, 255.0f, 256.0f, 0.5f, 7.5f, 33.3f, 300.0f}) {
     double worst = 0.0;
     for (int i = 1; i <= 1000; ++i) {
       const float x = float(i) / 1000.0f;
-      worst = std::max(worst, std::abs(double(pow_unit(x, s)) - std::pow(double(x), double(s))));
+      const float p = pow_unit(x, s);
+      worst = std::max(worst, std::abs(double(p) - std::pow(double(x), double(s))));
+      EXPECT_TRUE(p == 0.0f || std::fpclassify(p) == FP_NORMAL) << "shininess " << s << " x " << x;
     }
     EXPECT_LT(worst, 2e-6) << "shininess " << s;
+    EXPECT_EQ(pow_unit(1.0f, s), 1.0f) << s;
+    EXPECT_EQ(pow_unit(1.0000001f, s), 1.0f) << s;  // a dot of unit vectors may exceed 1
+    EXPECT_EQ(pow_unit(0.0f, s), 0.0f) << s;
+    EXPECT_EQ(pow_unit(-0.2f, s), 0.0f) << s;
   }
-  EXPECT_EQ(pow_unit(0.0f, 20.0f), 0.0f);
   EXPECT_EQ(pow_unit(0.3f, 0.0f), 1.0f);
-  EXPECT_EQ(pow_unit(1.0f, 50.0f), 1.0f);
+  EXPECT_EQ(pow_unit(0.5f, 1.0f), 0.5f);
+  EXPECT_EQ(pow_unit(0.5f, 20.0f), std::ldexp(1.0f, -20));
 }
 
 TEST(Pcg32, IsDeterministicAndUniform) {

@@ -43,9 +43,23 @@ template <class F> PENUMBRA_HD PENUMBRA_FORCE_INLINE F log_positive(F x) {
   return to_float(e) * 0.693147180559945f + series;
 }
 
-// x^s for x in [0, 1] and s >= 0 (a specular highlight), through
-// exp_nonpositive(s ln x); 0^s = 0 for s > 0 and x^0 = 1.
+// x^s for x in [0, 1] and s >= 0 (a specular highlight); 0^s = 0 for s > 0
+// and x^0 = 1. A whole s up to 256 (the usual shininess) takes repeated
+// squaring, at most 16 products in place of a log and an exp; a power below
+// 2^-120 reads 0 (as exp_nonpositive does below e^-87), so that no product is
+// subnormal: each partial power is at least the whole one. Other s go
+// through exp_nonpositive(s ln x).
 template <class F> PENUMBRA_HD PENUMBRA_FORCE_INLINE F pow_unit(F x, float s) {
+  if (s >= 1.0f && s <= 256.0f && s == float(int(s))) {
+    const float smallest = exp_nonpositive(-83.1776617f / s);  // 2^(-120 / s)
+    F base = select(x >= smallest, min(x, F(1.0f)), F(0.0f));
+    F result(1.0f);
+    for (unsigned n = unsigned(s);; base = base * base) {
+      if (n & 1u) result = result * base;
+      n >>= 1;
+      if (n == 0) return result;
+    }
+  }
   const auto positive = x > 0.0f;
   const F zero_power(s > 0.0f ? 0.0f : 1.0f);
   if (none(positive)) return zero_power;
