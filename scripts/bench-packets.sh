@@ -20,13 +20,19 @@ techniques=(emission-absorption phong shadow-rays filtered-sat sat-ao cone-shado
 args=()
 for t in "${techniques[@]}"; do args+=(--technique "$t"); done
 out=$(mktemp)
-trap 'rm -f "$out"' EXIT
+trap 'rm -f "$out" "$out.one"' EXIT
 echo "# $(date -u +%Y-%m-%dT%H:%MZ) $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//')," \
      "load $(cut -d' ' -f1-3 /proc/loadavg), $scene $size, threads $threads"
 for run in $(seq 1 "$runs"); do
   if [ -n "$base" ]; then
-    "$base" --threads "$threads" bench "$scene" "${args[@]}" --size "$size" --frames 5 |
-      sed 's/^{/{"build": "before", /' | tee -a "$out"
+    # An older build may not know every technique: it runs those it knows.
+    for t in "${techniques[@]}"; do
+      if ! "$base" --threads "$threads" bench "$scene" --technique "$t" --size "$size" --frames 5 > "$out.one" 2>&1; then
+        echo "# before: $t skipped ($(head -c 200 "$out.one"))"
+        continue
+      fi
+      sed 's/^{/{"build": "before", /' "$out.one" | tee -a "$out"
+    done
   fi
   for simd in off auto; do
     "$bin" --threads "$threads" --simd "$simd" bench "$scene" "${args[@]}" --size "$size" --frames 5 |
@@ -39,11 +45,12 @@ rows = [json.loads(l) for l in open(sys.argv[1]) if l.startswith("{")]
 builds = list(dict.fromkeys(r["build"] for r in rows))
 techs = list(dict.fromkeys(r["technique"] for r in rows))
 med = {(b, t): statistics.median(r["frame_ms_median"] for r in rows if r["build"] == b and r["technique"] == t)
-       for b in builds for t in techs}
+       for b in builds for t in techs if any(r["build"] == b and r["technique"] == t for r in rows)}
+cell = lambda b, t: f"{med[(b, t)]:.1f}" if (b, t) in med else "-"
 print("| technique | " + " | ".join(f"{b} ms" for b in builds) + " | x phong (auto) | speed-up vs " + builds[0] + " |")
 print("|---" * (len(builds) + 3) + "|")
 for t in techs:
-    cells = " | ".join(f"{med[(b, t)]:.1f}" for b in builds)
-    print(f"| {t} | {cells} | {med[('simd=auto', t)] / med[('simd=auto', 'phong')]:.2f} | "
-          f"{med[(builds[0], t)] / med[('simd=auto', t)]:.2f} |")
+    cells = " | ".join(cell(b, t) for b in builds)
+    speedup = f"{med[(builds[0], t)] / med[('simd=auto', t)]:.2f}" if (builds[0], t) in med else "-"
+    print(f"| {t} | {cells} | {med[('simd=auto', t)] / med[('simd=auto', 'phong')]:.2f} | {speedup} |")
 EOF
