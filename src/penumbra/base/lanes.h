@@ -105,6 +105,17 @@ PENUMBRA_HD PENUMBRA_FORCE_INLINE std::int32_t bits_of(float f) {
 // off must still hold an index that is safe to read.
 template <class T> PENUMBRA_HD PENUMBRA_FORCE_INLINE T gather(const T* base, std::int64_t index) { return base[index]; }
 
+// The four floats base[index .. index + 3] per lane (a texel of four values):
+// plain loads here; for packets (simd_lanes.h) one 16-byte load per lane and a
+// transpose instead of four gathers (cssm's taps: docs/PERFORMANCE.md).
+PENUMBRA_HD PENUMBRA_FORCE_INLINE void gather4(const float* base, std::int64_t index, float& v0, float& v1, float& v2,
+                                               float& v3) {
+  v0 = base[index];
+  v1 = base[index + 1];
+  v2 = base[index + 2];
+  v3 = base[index + 3];
+}
+
 // The voxel at `offset` as float, and the pair at `offset` and `offset +
 // step`: plain loads here; gathers for packets (simd_lanes.h), where 8- and
 // 16-bit voxels come from 32-bit words. `count` is the number of voxels

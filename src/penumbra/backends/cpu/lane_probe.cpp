@@ -13,6 +13,16 @@ __attribute__((flatten)) void run_lane_probe(const LaneProbe& probe) {
   using F = L::Float;
   using V = L::Vec3;
   constexpr int W = L::kWidth;
+  if (probe.gathered) {
+    for (int first = 0; first + W <= probe.count; first += W) {
+      F c[4];
+      gather4(probe.table, L::load(probe.table_indices + first), c[0], c[1], c[2], c[3]);
+      float lanes[4][W];
+      for (int k = 0; k < 4; ++k) L::store(c[k], lanes[k]);
+      for (int i = 0; i < W; ++i) probe.gathered[first + i] = vec4(lanes[0][i], lanes[1][i], lanes[2][i], lanes[3][i]);
+    }
+  }
+  if (!probe.view) return;
   const RenderView& v = *probe.view;
   const AnyVoxelSampler sampler(v.volume.data, v.volume.dims, v.volume.type);
   for (int first = 0; first + W <= probe.count; first += W) {

@@ -24,6 +24,12 @@ struct LaneProbe {
   // `others` (count entries) is set
   const float* others = nullptr;
   vec3* min_max_clamp = nullptr;
+  // gather4 of `table` at `table_indices` (count entries, each at most the
+  // table's size - 4), when `gathered` (count entries) is set; with `view`
+  // null only this runs
+  const float* table = nullptr;
+  const std::int32_t* table_indices = nullptr;
+  vec4* gathered = nullptr;
 };
 
 namespace N_AVX2 {

@@ -212,5 +212,37 @@ TEST(Lanes, MinMaxAndClampAreGlmsBitForBit) {
   }
 }
 
+// gather4 (four consecutive floats per lane: a light-map texel) gives the
+// four plain loads of its scalar instance, for indices at any alignment and
+// at the table's last four floats.
+TEST(Lanes, Gather4ReadsTheFourFloatsAtEachIndex) {
+  const auto targets = probe_targets();
+  if (targets.empty()) GTEST_SKIP() << "this CPU or build has no SIMD target";
+  constexpr int kTable = 1003, kCount = 160;
+  std::vector<float> table(kTable);
+  for (int i = 0; i < kTable; ++i) table[std::size_t(i)] = 0.25f * float(i) - 7.0f;
+  std::vector<std::int32_t> indices(kCount);
+  Pcg32 rng(11);
+  for (int i = 0; i < kCount; ++i) {
+    indices[std::size_t(i)] = std::int32_t(rng.next_float() * float(kTable - 4));
+    if (i % 16 == 5) indices[std::size_t(i)] = kTable - 4;  // the last texel: no read past the end
+    if (i % 16 == 9) indices[std::size_t(i)] = 0;
+  }
+  for (const auto& [name, run] : targets) {
+    std::vector<vec4> gathered(kCount, vec4(-1.0f));
+    LaneProbe probe;
+    probe.count = kCount;
+    probe.table = table.data();
+    probe.table_indices = indices.data();
+    probe.gathered = gathered.data();
+    run(probe);
+    for (int i = 0; i < kCount; ++i) {
+      vec4 expected;
+      gather4(table.data(), indices[std::size_t(i)], expected.x, expected.y, expected.z, expected.w);
+      EXPECT_EQ(gathered[std::size_t(i)], expected) << name << " index " << indices[std::size_t(i)];
+    }
+  }
+}
+
 }  // namespace
 }  // namespace penumbra

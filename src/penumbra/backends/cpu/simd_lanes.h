@@ -131,6 +131,17 @@ HWY_INLINE IntV bits_of(FloatV f) { return hn::BitCast(IntTag(), f.v); }
 // index (callers select 0 there); Highway 1.0.3 has no masked gather.
 HWY_INLINE FloatV gather(const float* base, IntV index) { return hn::GatherIndex(FloatTag(), base, index.v); }
 HWY_INLINE IntV gather(const std::int32_t* base, IntV index) { return hn::GatherIndex(IntTag(), base, index.v); }
+// base[index + k] for k = 0..3 per lane (lanes.h): each lane's 16 bytes in one
+// load into a buffer, then one de-interleaving load.
+HWY_INLINE void gather4(const float* base, IntV index, FloatV& v0, FloatV& v1, FloatV& v2, FloatV& v3) {
+  constexpr std::size_t kMax = hn::MaxLanes(FloatTag());
+  const std::size_t n = hn::Lanes(FloatTag());
+  HWY_ALIGN std::int32_t at[kMax];
+  HWY_ALIGN float texels[4 * kMax];
+  hn::Store(index.v, IntTag(), at);
+  for (std::size_t i = 0; i < n; ++i) __builtin_memcpy(texels + 4 * i, base + at[i], 4 * sizeof(float));
+  hn::LoadInterleaved4(FloatTag(), texels, v0.v, v1.v, v2.v, v3.v);
+}
 // The 32-bit word at a byte offset (unaligned).
 HWY_INLINE IntV gather_word(const void* base, IntV byte_offset) {
   return hn::GatherOffset(IntTag(), static_cast<const std::int32_t*>(base), byte_offset.v);

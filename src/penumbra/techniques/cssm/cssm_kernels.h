@@ -164,11 +164,13 @@ struct CssmVisibility {
   }
 
   // Tap j: its texel's offset in the map, whether the map has it (else the
-  // tap is lit), whether the filter keeps it and the depth to test.
+  // tap is lit), whether the filter keeps it, the depth to test and the
+  // texel's three stopping depths (read with its entry in one gather4).
   template <class L> struct Tap {
     typename L::Index at;
     typename L::Mask inside, kept;
     typename L::Float depth;
+    typename L::Float stop[3];
   };
 
   template <class L>
@@ -187,11 +189,12 @@ struct CssmVisibility {
     using F = typename L::Float;
     Tap<L> t;
     t.at = map.texel_offset<L>(q.face, to_int(tx), to_int(ty), t.inside);
+    F stored_entry;
+    gather4(map.texels, t.at, t.stop[0], t.stop[1], t.stop[2], stored_entry);
     t.depth = q.depth;
     t.kept = typename L::Mask(true);
     if (aware) {
-      const F entry = select(t.inside, LightMapView::finite_depth(gather(map.texels, t.at + typename L::Index(3))),
-                             F(LightMapView::kFarDepth));
+      const F entry = select(t.inside, LightMapView::finite_depth(stored_entry), F(LightMapView::kFarDepth));
       const F ex = tx + 0.5f - q.x, ey = ty + 0.5f - q.y;
       const F distance = max(max(ex, -ex), max(ey, -ey));
       const F shift = entry - plane.entry;
@@ -209,7 +212,6 @@ struct CssmVisibility {
   PENUMBRA_HD typename L::Vec3 lanes(int light, const typename L::Vec3& p, const LightSampleL<L>& ls,
                                      typename L::Mask active) const {
     using F = typename L::Float;
-    using X = typename L::Index;
     using V = typename L::Vec3;
     const LightMapView& map = maps[light];
     if constexpr (L::kWidth > 1) {
@@ -224,8 +226,7 @@ struct CssmVisibility {
     F kept(0.0f);
     const auto add = [&](const Tap<L>& t) {
       const auto in_front = [&](int channel) {
-        return select(t.kept & ((!t.inside) | (gather(map.texels, t.at + X(channel)) > t.depth)), F(1.0f),
-                      F(0.0f));
+        return select(t.kept & ((!t.inside) | (t.stop[channel] > t.depth)), F(1.0f), F(0.0f));
       };
       lit += V(in_front(0), in_front(1), in_front(2));
       kept += select(t.kept, F(1.0f), F(0.0f));
