@@ -59,6 +59,7 @@ PENUMBRA_HD inline Pcg32 cssm_texel_rng(std::uint32_t seed, int light, std::int6
 // fourth value of a CSSM texel).
 inline constexpr float kCssmEntryOpacity = 0.02f;
 inline constexpr int kCssmValues = 4;  // r, g, b stopping depths and the entry
+static_assert(kCssmValues == 4, "CssmVisibility reads a texel's values with one gather4");
 
 // Per-channel stopping depths of one texel's photons (xyz) and the ray's
 // entry depth (w).
