@@ -14,6 +14,40 @@
 
 namespace penumbra {
 
+// The filter's combination of light-axis columns into the filtered optical
+// depth at the patch centre (a, b) (cell units, half-width `half` cells):
+// column(a, b) is the extinction integral over [0, a] x [0, b] times the
+// cuboid's extent along the light. Shared by the table lookup below and the
+// streamed evaluation (streamed_csat.h), which read their columns differently.
+template <class Column>
+PENUMBRA_HD PENUMBRA_FORCE_INLINE float csat_patch_depth(const Column& column, float a, float b, float half,
+                                                        float cell, const ShadowFilter& filter) {
+  if (filter.taps == 1) {
+    const double sum = column(a + half, b + half) - column(a - half, b + half) - column(a + half, b - half) +
+                       column(a - half, b - half);
+    const double area = double(2.0f * half * cell) * double(2.0f * half * cell);
+    return float(glm::max(sum / area, 0.0));
+  }
+  const float step = 2.0f * half / float(filter.taps);
+  double previous[ShadowFilter::kMaxTaps + 1];
+  double current[ShadowFilter::kMaxTaps + 1];
+  double depth = 0.0;
+  for (int j = 0; j <= filter.taps; ++j) {
+    const float v = b - half + float(j) * step;
+    for (int i = 0; i <= filter.taps; ++i) current[i] = column(a - half + float(i) * step, v);
+    if (j > 0) {
+      double row = 0.0;
+      for (int i = 0; i < filter.taps; ++i) {
+        row += double(filter.weights[i]) * (current[i + 1] - current[i] - previous[i + 1] + previous[i]);
+      }
+      depth += double(filter.weights[j - 1]) * row;
+    }
+    for (int i = 0; i <= filter.taps; ++i) previous[i] = current[i];
+  }
+  const double sub_area = double(step * cell) * double(step * cell);
+  return float(glm::max(depth / sub_area, 0.0));
+}
+
 // The lookup with the light along grid axis Axis (a compile-time index, so
 // that the coordinates stay in registers); q: the sample in grid coordinates.
 template <int Axis>
@@ -36,31 +70,7 @@ PENUMBRA_HD PENUMBRA_FORCE_INLINE float csat_filtered_depth_along(const SummedAr
     c[kB] = b;
     return table.prefix_difference<Axis>(c, w0, w1);
   };
-  const float a = q[kA], b = q[kB];
-  if (filter.taps == 1) {
-    const double sum = column(a + half, b + half) - column(a - half, b + half) - column(a + half, b - half) +
-                       column(a - half, b - half);
-    const double area = double(2.0f * half * grid.cell) * double(2.0f * half * grid.cell);
-    return float(glm::max(sum / area, 0.0));
-  }
-  const float step = 2.0f * half / float(filter.taps);
-  double previous[ShadowFilter::kMaxTaps + 1];
-  double current[ShadowFilter::kMaxTaps + 1];
-  double depth = 0.0;
-  for (int j = 0; j <= filter.taps; ++j) {
-    const float v = b - half + float(j) * step;
-    for (int i = 0; i <= filter.taps; ++i) current[i] = column(a - half + float(i) * step, v);
-    if (j > 0) {
-      double row = 0.0;
-      for (int i = 0; i < filter.taps; ++i) {
-        row += double(filter.weights[i]) * (current[i + 1] - current[i] - previous[i + 1] + previous[i]);
-      }
-      depth += double(filter.weights[j - 1]) * row;
-    }
-    for (int i = 0; i <= filter.taps; ++i) previous[i] = current[i];
-  }
-  const double sub_area = double(step * grid.cell) * double(step * grid.cell);
-  return float(glm::max(depth / sub_area, 0.0));
+  return csat_patch_depth(column, q[kA], q[kB], half, grid.cell, filter);
 }
 
 // `axis`, `sign`: the light lies toward sign * grid.axes[axis].

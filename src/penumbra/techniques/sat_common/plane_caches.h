@@ -80,7 +80,8 @@ class PlaneCaches {
   // Rebuilds the grids when the planes' geometry, the lights' placements or
   // `version` (what visibility reads: the technique's tables and cones)
   // changed; returns whether it did. cell: the grid spacing in world units;
-  // visibility(light, p): the technique's direct visibility of light at p.
+  // visibility(light, p): the technique's direct visibility of light at p
+  // (or the batch visibility(light, count, point, out), sat_common/batch.h).
   // A rectangle of more than kMaxSide nodes a side (a light grazing the
   // plane) gets no grid: its build would cost more than the frames it saves.
   static constexpr int kMaxSide = 1024;
@@ -118,6 +119,7 @@ class PlaneCaches {
 }  // namespace penumbra
 
 #include "penumbra/base/parallel.h"
+#include "penumbra/techniques/sat_common/batch.h"
 
 namespace penumbra {
 
@@ -147,12 +149,10 @@ bool PlaneCaches::update(const std::vector<Light>& lights, const std::vector<Pla
       // Node (x, y) sits at origin + x U + y V, where U, V are the in-plane
       // axes of one cell (u and v are those over the cell size squared).
       const vec3 U = c.u / glm::dot(c.u, c.u), V = c.v / glm::dot(c.v, c.v);
-      parallel_for(0, c.dims.y, [&](std::int64_t first, std::int64_t last) {
-        for (std::int64_t y = first; y < last; ++y) {
-          float* row = texels_.data() + c.offset + y * c.dims.x;
-          for (int x = 0; x < c.dims.x; ++x) row[x] = visibility(i, c.origin + float(x) * U + float(y) * V);
-        }
-      });
+      evaluate_light_batch(
+          visibility, std::size_t(i), std::int64_t(c.dims.x) * c.dims.y,
+          [&](std::int64_t t) { return c.origin + float(t % c.dims.x) * U + float(t / c.dims.x) * V; },
+          texels_.data() + c.offset);
     }
   }
   return true;

@@ -27,9 +27,11 @@
 #include "penumbra/base/math.h"
 #include "penumbra/base/parallel.h"
 #include "penumbra/base/vec.h"
+#include "penumbra/techniques/sat_common/batch.h"
 #include "penumbra/volume/volume.h"
 #include "penumbra/volume/volume_view.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -99,6 +101,8 @@ class RefinedCells {
   // ramp across a penumbra needs no brick), filled with depth(world), the
   // optical depth toward the light. Throws OutOfMemoryBudget before
   // allocating bricks that do not fit.
+  // `depth` may also be a batch (sat_common/batch.h): the probes are
+  // evaluated as one batch, then the bricks' texels as another.
   template <class Depth>
   void build(const Volume& cache, float tolerance, float probe_tolerance, int refine, const Depth& depth) {
     plan(cache, tolerance, refine);
@@ -107,57 +111,77 @@ class RefinedCells {
     const ivec3 dims = cache.dims();
     const ivec3 blocks = view_.blocks;
     const std::int64_t block_count = std::int64_t(blocks.x) * blocks.y * blocks.z;
-    auto block_of = [&](std::int64_t block) {
-      return ivec3(int(block % blocks.x), int(block / blocks.x % blocks.y), int(block / blocks.x / blocks.y));
+    auto cell_of = [&](std::int64_t block, int bit) {
+      const ivec3 b(int(block % blocks.x), int(block / blocks.x % blocks.y), int(block / blocks.x / blocks.y));
+      return b * 4 + ivec3(bit & 3, (bit >> 2) & 3, bit >> 4);
     };
-    auto cell_of = [](ivec3 b, int bit) { return b * 4 + ivec3(bit & 3, (bit >> 2) & 3, bit >> 4); };
-    // Keep the candidates whose trilinear read misses a probe.
-    parallel_for(0, block_count, [&](std::int64_t first, std::int64_t last) {
-      for (std::int64_t block = first; block < last; ++block) {
-        std::uint64_t keep = 0;
-        for (std::uint64_t mask = masks_[std::size_t(block)]; mask != 0; mask &= mask - 1) {
-          const int bit = __builtin_ctzll(mask);
-          const ivec3 c = cell_of(block_of(block), bit);
-          float corner[8];
-          for (int k = 0; k < 8; ++k) {
-            const ivec3 q = glm::min(c + ivec3(k & 1, (k >> 1) & 1, (k >> 2) & 1), dims - 1);
-            corner[k] = data[std::size_t(q.x) + std::size_t(dims.x) * (std::size_t(q.y) + std::size_t(dims.y) * q.z)];
-          }
-          static constexpr float kProbes[7][3] = {{0.5f, 0.5f, 0.5f}, {0.0f, 0.5f, 0.5f}, {1.0f, 0.5f, 0.5f},
-                                                  {0.5f, 0.0f, 0.5f}, {0.5f, 1.0f, 0.5f}, {0.5f, 0.5f, 0.0f},
-                                                  {0.5f, 0.5f, 1.0f}};
-          for (const auto& f : kProbes) {
-            float read = 0.0f;
-            for (int k = 0; k < 8; ++k) {
-              read += corner[k] * (k & 1 ? f[0] : 1.0f - f[0]) * (k & 2 ? f[1] : 1.0f - f[1]) *
-                      (k & 4 ? f[2] : 1.0f - f[2]);
-            }
-            const float truth = exp_nonpositive(-depth(view.world_from_index(vec3(c) + vec3(f[0], f[1], f[2]))));
-            if (std::abs(truth - read) > probe_tolerance) {
-              keep |= std::uint64_t(1) << bit;
-              break;
-            }
-          }
-        }
-        masks_[std::size_t(block)] = keep;
+    // The candidates, in block and bit order.
+    std::vector<std::int64_t> candidates;  // block * 64 + bit
+    for (std::int64_t block = 0; block < block_count; ++block) {
+      for (std::uint64_t mask = masks_[std::size_t(block)]; mask != 0; mask &= mask - 1) {
+        candidates.push_back(block * 64 + __builtin_ctzll(mask));
       }
-    });
-    allocate(refine);
-    const int n = refine;
-    parallel_for(0, block_count, [&](std::int64_t first, std::int64_t last) {
-      for (std::int64_t block = first; block < last; ++block) {
-        std::size_t brick = first_[std::size_t(block)];
-        for (std::uint64_t mask = masks_[std::size_t(block)]; mask != 0; mask &= mask - 1, ++brick) {
-          const ivec3 c = cell_of(block_of(block), __builtin_ctzll(mask));
-          std::uint16_t* out = texels_.data() + brick * std::size_t(n * n * n);
-          for (int z = 0; z < n; ++z)
-            for (int y = 0; y < n; ++y)
-              for (int x = 0; x < n; ++x) {
-                const vec3 index = vec3(c) + (vec3(x, y, z) + 0.5f) / float(n);
-                const float tau = glm::clamp(depth(view.world_from_index(index)), 0.0f, RefinedCellsView::kMaxDepth);
-                out[x + n * (y + n * z)] = std::uint16_t(tau * (65535.0f / RefinedCellsView::kMaxDepth) + 0.5f);
-              }
+    }
+    static constexpr float kProbes[7][3] = {{0.5f, 0.5f, 0.5f}, {0.0f, 0.5f, 0.5f}, {1.0f, 0.5f, 0.5f},
+                                            {0.5f, 0.0f, 0.5f}, {0.5f, 1.0f, 0.5f}, {0.5f, 0.5f, 0.0f},
+                                            {0.5f, 0.5f, 1.0f}};
+    std::vector<float> probe_depth(candidates.size() * 7);
+    evaluate_batch(
+        depth, std::int64_t(probe_depth.size()),
+        [&](std::int64_t t) {
+          const std::int64_t c = candidates[std::size_t(t / 7)];
+          const float* f = kProbes[t % 7];
+          return view.world_from_index(vec3(cell_of(c / 64, int(c % 64))) + vec3(f[0], f[1], f[2]));
+        },
+        probe_depth.data());
+    // Keep the candidates whose trilinear read misses a probe.
+    std::fill(masks_.begin(), masks_.end(), std::uint64_t(0));
+    for (std::size_t n = 0; n < candidates.size(); ++n) {
+      const ivec3 c = cell_of(candidates[n] / 64, int(candidates[n] % 64));
+      float corner[8];
+      for (int k = 0; k < 8; ++k) {
+        const ivec3 q = glm::min(c + ivec3(k & 1, (k >> 1) & 1, (k >> 2) & 1), dims - 1);
+        corner[k] = data[std::size_t(q.x) + std::size_t(dims.x) * (std::size_t(q.y) + std::size_t(dims.y) * q.z)];
+      }
+      for (int probe = 0; probe < 7; ++probe) {
+        const float* f = kProbes[probe];
+        float read = 0.0f;
+        for (int k = 0; k < 8; ++k) {
+          read += corner[k] * (k & 1 ? f[0] : 1.0f - f[0]) * (k & 2 ? f[1] : 1.0f - f[1]) *
+                  (k & 4 ? f[2] : 1.0f - f[2]);
         }
+        const float truth = exp_nonpositive(-probe_depth[n * 7 + std::size_t(probe)]);
+        if (std::abs(truth - read) > probe_tolerance) {
+          masks_[std::size_t(candidates[n] / 64)] |= std::uint64_t(1) << (candidates[n] % 64);
+          break;
+        }
+      }
+    }
+    std::vector<float>().swap(probe_depth);
+    allocate(refine);
+    // The bricks' cells, in brick order (block, then bit).
+    std::vector<ivec3> brick_cells;
+    brick_cells.reserve(brick_count_);
+    for (std::int64_t block = 0; block < block_count; ++block) {
+      for (std::uint64_t mask = masks_[std::size_t(block)]; mask != 0; mask &= mask - 1) {
+        brick_cells.push_back(cell_of(block, __builtin_ctzll(mask)));
+      }
+    }
+    const int n = refine;
+    const std::int64_t per_brick = std::int64_t(n) * n * n;
+    std::vector<float> tau(brick_cells.size() * std::size_t(per_brick));
+    evaluate_batch(
+        depth, std::int64_t(tau.size()),
+        [&](std::int64_t t) {
+          const std::int64_t texel = t % per_brick;
+          const vec3 sub(float(texel % n), float(texel / n % n), float(texel / (n * n)));
+          return view.world_from_index(vec3(brick_cells[std::size_t(t / per_brick)]) + (sub + 0.5f) / float(n));
+        },
+        tau.data());
+    parallel_for(0, std::int64_t(tau.size()), [&](std::int64_t first, std::int64_t last) {
+      for (std::int64_t t = first; t < last; ++t) {
+        const float clamped = glm::clamp(tau[std::size_t(t)], 0.0f, RefinedCellsView::kMaxDepth);
+        texels_[std::size_t(t)] = std::uint16_t(clamped * (65535.0f / RefinedCellsView::kMaxDepth) + 0.5f);
       }
     });
     view_.block_first = first_.data();

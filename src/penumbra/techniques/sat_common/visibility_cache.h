@@ -5,6 +5,7 @@
 // viewing-ray sample. Texel (0, 0, 0) sits on the box's lower corner and the
 // last texel on its upper corner (the layout of shadow-rays' cache).
 #include "penumbra/base/parallel.h"
+#include "penumbra/techniques/sat_common/batch.h"
 #include "penumbra/render/parameters.h"
 #include "penumbra/volume/volume.h"
 
@@ -18,21 +19,20 @@ namespace penumbra {
 // voxel (at least 2 per axis).
 ivec3 visibility_cache_dims(ivec3 data_dims, float resolution);
 
-// A cache of `dims` texels over `box` with texel value visibility(world).
+// A cache of `dims` texels over `box` with texel value visibility(world);
+// visibility may also be a batch (sat_common/batch.h).
 template <class Visibility> Volume build_visibility_cache(const Box3& box, ivec3 dims, const Visibility& visibility) {
   Volume cache(dims, VoxelType::Float32);
   cache.set_spacing(glm::max(box.extent() / vec3(dims - 1), vec3(1e-6f)));
   cache.set_origin(box.lower);
-  float* texels = cache.frame_as<float>(0);
   const VolumeView view = cache.view();
-  parallel_for(0, std::int64_t(dims.z) * dims.y, [&](std::int64_t first, std::int64_t last) {
-    for (std::int64_t row = first; row < last; ++row) {
-      const int y = int(row % dims.y);
-      const int z = int(row / dims.y);
-      float* out = texels + std::int64_t(dims.x) * row;
-      for (int x = 0; x < dims.x; ++x) out[x] = visibility(view.world_from_index(vec3(x, y, z)));
-    }
-  });
+  const std::int64_t row = dims.x, slab = std::int64_t(dims.x) * dims.y;
+  evaluate_batch(
+      visibility, slab * dims.z,
+      [&](std::int64_t t) {
+        return view.world_from_index(vec3(float(t % row), float(t % slab / row), float(t / slab)));
+      },
+      cache.frame_as<float>(0));
   return cache;
 }
 
@@ -48,7 +48,8 @@ class LightVisibilityCaches {
   bool built() const { return built_; }
 
   // For each light i < light_count with has_cache(i): a cache of `dims` over
-  // `box` holding visibility(i, world), rebuilt when the parameters, the box
+  // `box` holding visibility(i, world) (or the batch visibility(i, count,
+  // point, out), sat_common/batch.h), rebuilt when the parameters, the box
   // or the dims changed, when the light had none, or when stale(i) (its own
   // inputs changed). Caches of lights without one are released first, then
   // each stale cache before its replacement is built; before_build(i) runs
@@ -83,7 +84,9 @@ class LightVisibilityCaches {
       if (!has_cache(i) || (caches_[i] && !all && !stale(i))) continue;
       caches_[i].reset();  // free the old cache first
       before_build(i);
-      caches_[i].emplace(build_visibility_cache(box, dims, [&](vec3 p) { return visibility(i, p); }));
+      caches_[i].emplace(build_visibility_cache(box, dims, [&](std::int64_t count, const auto& point, float* out) {
+        evaluate_light_batch(visibility, i, count, point, out);
+      }));
       after_build(i, *caches_[i]);
       ++count;
     }
