@@ -4,12 +4,15 @@
 #include "penumbra/render/render_lit.h"
 #include "penumbra/render/scene_resources.h"
 #include "penumbra/techniques/filtered_sat/filtered_visibility.h"
+#include "penumbra/techniques/filtered_sat/streamed_csat.h"
+#include "penumbra/techniques/sat_common/extinction_table.h"
 #include "penumbra/techniques/sat_common/plane_caches.h"
 #include "penumbra/techniques/sat_common/refined_cells.h"
 #include "penumbra/techniques/sat_common/table_dependencies.h"
 #include "penumbra/techniques/sat_common/visibility_cache.h"
 
 #include <limits>
+#include <optional>
 #include <vector>
 
 namespace penumbra {
@@ -25,6 +28,9 @@ constexpr double kMinFilterVoxels = 0.25, kMaxFilterVoxels = 256.0;  // filter_v
 // a voxel (a penumbra on the floor is at most the filter wide). Chosen by
 // measurement (docs/filtered-sat.md, "Memory").
 constexpr float kProbeTolerance = 0.025f;
+// table_streaming=auto streams a directional light's table when it would
+// take more than this (docs/filtered-sat.md, "Streamed tables").
+constexpr std::uint64_t kStreamTablesAbove = std::uint64_t(512) << 20;
 constexpr float kPlaneNodesPerFilter = 5.0f, kMinPlaneNodeVoxels = 0.25f, kMaxPlaneNodeVoxels = 1.0f;
 
 FilterKernel kernel_named(const std::string& name, bool gaussian_light) {
@@ -101,6 +107,7 @@ class FilteredSat final : public Technique {
       return i >= previous.size() || !(previous[i] == placements_[i]) || i >= previous_shapes.size() ||
              previous_shapes[i] != light_shapes_[i];
     };
+    const std::string streaming = params.choice("table_streaming");
     const std::size_t lights = placements_.size();
     refined_.resize(lights);
     plane_caches_.resize(lights);
@@ -109,21 +116,22 @@ class FilteredSat final : public Technique {
         lights, scene.volume().world_box(),
         visibility_cache_dims(scene.volume().dims(), float(params.number("cache_resolution"))), cache_params,
         [&](std::size_t light) { return placements_[light].kind != LightTableKind::None; }, stale,
-        [&](std::size_t light, vec3 p) {
-          return visibility().transmittance(int(light), p);
+        [&](std::size_t light, std::int64_t count, const auto& point, float* out) {
+          transmittances(light, count, point, out);
         },
         [&](std::size_t light) {
           // Without kept tables: build (or keep, for a light sharing the
-          // last one's CSAT) only the table this light reads.
-          if (!keep_tables) rebuilds_ += std::uint64_t(tables_.build(shadows, scene.lights(), cell, true, int(light)));
+          // last one's CSAT) only the table this light reads, or stream it.
+          if (!keep_tables) prepare_light_table(scene, shadows, cell, streaming, light);
         },
         [&](std::size_t light, const Volume& light_cache) {
           // What else reads this light's table: its bricks and plane grids.
           ++cache_builds_[light];
-          const FilteredVisibility direct = visibility();
           if (bricks) {
             refined_[light].build(light_cache, cache_tolerance_, kProbeTolerance, refine,
-                                  [&](vec3 p) { return direct.optical_depth(int(light), p); });
+                                  [&](std::int64_t count, const auto& point, float* out) {
+                                    optical_depths(light, count, point, out);
+                                  });
           }
           if (plane_grids) fill_plane_grids(scene, light, voxel);
         }));
@@ -142,7 +150,7 @@ class FilteredSat final : public Technique {
             plane_caches_[i].current({scene_lights[i]}, scene.planes(), plane_cell(i, voxel), cache_builds_[i])) {
           continue;
         }
-        if (!keep_tables) rebuilds_ += std::uint64_t(tables_.build(shadows, scene_lights, cell, true, int(i)));
+        if (!keep_tables) prepare_light_table(scene, shadows, cell, streaming, i);
         fill_plane_grids(scene, i, voxel);
       }
     }
@@ -155,6 +163,7 @@ class FilteredSat final : public Technique {
       for (const PlaneCaches& p : plane_caches_) plane_views_.push_back(p.view());
     }
     if (!keep_tables) tables_.release(placements_.size());
+    stream_.reset();
     built_ = true;
   }
 
@@ -237,12 +246,57 @@ class FilteredSat final : public Technique {
     }
     return true;
   }
-  // Light i's grids on the planes, from its table (which must live).
+  // Light i's grids on the planes, from its table (which must live) or its stream.
   void fill_plane_grids(const Scene& scene, std::size_t light, float voxel) {
-    const FilteredVisibility direct = visibility();
     plane_builds_ += std::uint64_t(plane_caches_[light].update(
         {scene.lights()[light]}, scene.planes(), shadow_box(scene, light), plane_cell(light, voxel),
-        cache_builds_[light], [&](int, vec3 p) { return direct.transmittance(int(light), p); }));
+        cache_builds_[light], [&](int, std::int64_t count, const auto& point, float* out) {
+          transmittances(light, count, point, out);
+        }));
+  }
+  // Without kept tables, before light i's cache, bricks or grids: its table
+  // alone (LightTables::build's only_light), or for a directional light
+  // whose table streaming takes (table_streaming), no table but a stream.
+  void prepare_light_table(const Scene& scene, const RenderView& shadows, float cell, const std::string& streaming,
+                           std::size_t light) {
+    stream_.reset();
+    if (streaming != "off" && placements_[light].kind == LightTableKind::Cartesian) {
+      const LightTableLookup lookup =
+          LightTables::lookup_without_table(shadows.box, scene.lights(), cell, int(light));
+      const ivec3 n = lookup.cartesian.cells + 1;
+      const std::uint64_t table_bytes = std::uint64_t(n.x) * std::uint64_t(n.y) * std::uint64_t(n.z) * sizeof(float);
+      if (streaming == "on" || table_bytes > kStreamTablesAbove) {
+        tables_.release(placements_.size());
+        stream_.emplace(shadows, lookup, extinction_samples_per_axis(cell / shadows.volume.min_spacing()));
+        ++rebuilds_;
+        return;
+      }
+    }
+    rebuilds_ += std::uint64_t(tables_.build(shadows, scene.lights(), cell, true, int(light)));
+  }
+  // Light i's filtered optical depths (with the density scale) at a batch
+  // of points, from its stream or its table.
+  template <class Point>
+  void optical_depths(std::size_t light, std::int64_t count, const Point& point, float* out) const {
+    const FilteredVisibility direct = visibility();
+    if (stream_) {
+      const ShadowFilter& filter = direct.filter(int(light));
+      stream_->depths(filter, count, point, out);
+      parallel_for(0, count, [&](std::int64_t first, std::int64_t last) {
+        for (std::int64_t i = first; i < last; ++i) out[i] *= filter.density_scale;
+      });
+      return;
+    }
+    parallel_for(0, count, [&](std::int64_t first, std::int64_t last) {
+      for (std::int64_t i = first; i < last; ++i) out[i] = direct.optical_depth(int(light), point(i));
+    });
+  }
+  template <class Point>
+  void transmittances(std::size_t light, std::int64_t count, const Point& point, float* out) const {
+    optical_depths(light, count, point, out);
+    parallel_for(0, count, [&](std::int64_t first, std::int64_t last) {
+      for (std::int64_t i = first; i < last; ++i) out[i] = exp_nonpositive(-out[i]);
+    });
   }
   FilteredVisibility visibility() const {
     return FilteredVisibility::with(tables_.lookups().data(), filters_, shared_filter_);
@@ -253,6 +307,7 @@ class FilteredSat final : public Technique {
   ShadowFilter shared_filter_;         // the lights beyond them
   std::vector<vec2> light_shapes_;     // per light: filter width (world) and gaussian (1) or box (0)
   LightTables tables_;
+  std::optional<StreamedCsat> stream_;  // during a prepare: the streamed table of the light being filled
   bool built_ = false;        // the last prepare finished
   bool tables_kept_ = false;  // tables_ holds every light's table (else none)
   ExtinctionInputs inputs_;   // what the tables and caches were built from
@@ -298,6 +353,11 @@ TechniqueInfo filtered_sat_info() {
           ParameterSpec::integer("cache_refinement", 4, 0, 8,
                                  "samples per cache cell edge in the bricks of rough cells (0 = the tables per "
                                  "sample there, kept for the whole render; 1 is refused)"),
+          ParameterSpec::choice("table_streaming", "auto", {"auto", "on", "off"},
+                                "without kept tables, evaluate a directional light's cache, bricks and floor grids "
+                                "layer by layer along the light instead of building its whole table (memory of "
+                                "two table layers, time of two to three table builds); auto = for tables over "
+                                "512 MiB"),
           ParameterSpec::real("shadow_density_scale", 1.0, 0.0, 100.0,
                               "multiplies the filtered optical depth (0 = unshadowed)"),
       }},

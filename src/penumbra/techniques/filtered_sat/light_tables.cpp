@@ -171,6 +171,28 @@ int LightTables::build(const RenderView& shadows, const std::vector<Light>& ligh
   return built;
 }
 
+LightTableLookup LightTables::lookup_without_table(const Box3& box, const std::vector<Light>& lights, float cell,
+                                                   int light) {
+  const TablePlan plan = plan_tables(lights, cell);
+  LightTableLookup lookup;
+  const int t = plan.light_table[std::size_t(light)];
+  if (t < 0) return lookup;
+  const Placement& p = plan.wanted[std::size_t(t)];
+  if (p.kind == LightTableKind::Spherical) {
+    lookup.kind = LightTableKind::Spherical;
+    lookup.spherical = fit_spherical_grid(box, p.light, cell);
+    return lookup;
+  }
+  for (std::size_t m = 0; m < plan.directional.size(); ++m) {
+    if (plan.directional[m] != light) continue;
+    lookup.kind = LightTableKind::Cartesian;
+    lookup.cartesian = fit_cartesian_grid(box, p.axes[0], p.axes[1], p.axes[2], cell);
+    lookup.axis = plan.grouping.members[m].axis;
+    lookup.sign = plan.grouping.members[m].sign;
+  }
+  return lookup;
+}
+
 std::uint64_t LightTables::bytes() const {
   std::uint64_t total = 0;
   for (const SummedAreaTable& t : tables_) total += t.bytes();

@@ -70,6 +70,11 @@ class LightTables {
   // before allocating a table that does not fit.
   int build(const RenderView& shadows, const std::vector<Light>& lights, float cell, bool reuse = false,
             int only_light = -1);
+  // The lookup build() would give `light`, without building its table
+  // (table empty): the grid, axis and sign of a directional light's CSAT,
+  // for filtered-sat's streamed evaluation (streamed_csat.h).
+  static LightTableLookup lookup_without_table(const Box3& box, const std::vector<Light>& lights, float cell,
+                                               int light);
   // Frees every table; `light_count` lookups of kind None remain.
   void release(std::size_t light_count);
   void clear();

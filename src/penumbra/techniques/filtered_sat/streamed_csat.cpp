@@ -1,0 +1,132 @@
+#include "penumbra/techniques/filtered_sat/streamed_csat.h"
+
+#include "penumbra/base/error.h"
+#include "penumbra/base/memory_budget.h"
+#include "penumbra/techniques/sat_common/extinction_table.h"
+
+#include <cmath>
+#include <limits>
+#include <utility>
+
+namespace penumbra {
+
+std::uint64_t StreamedCsat::layer_bytes() const {
+  const ivec3 c = light_.cartesian.cells;
+  const int axis = light_.axis;
+  const std::uint64_t na = std::uint64_t(c[axis == 0 ? 1 : 0]), nb = std::uint64_t(c[axis == 2 ? 1 : 2]);
+  // Three layers of centres and one of cell values (float); two node
+  // layers and the row sums (double).
+  return 4 * na * nb * sizeof(float) + 3 * (na + 1) * (nb + 1) * sizeof(double);
+}
+
+void StreamedCsat::check_order(std::int64_t count) {
+  if (std::uint64_t(count) > std::numeric_limits<std::uint32_t>::max()) {
+    throw OutOfMemoryBudget("filtered-sat's streamed table: the points' order", std::uint64_t(count) * 8,
+                            memory_budget_bytes());
+  }
+  check_memory_budget("filtered-sat's streamed table: the points' order (lower cache_resolution)",
+                      checked_product({std::uint64_t(count), 8}));
+}
+
+void StreamedCsat::stream(const std::function<void(const CsatLayerPair&)>& visit) const {
+  const CartesianTableGrid& grid = light_.cartesian;
+  const int axis = light_.axis;
+  const int ka = axis == 0 ? 1 : 0, kb = axis == 2 ? 1 : 2;
+  const int layers = grid.cells[axis], na = grid.cells[ka], nb = grid.cells[kb];
+  check_memory_budget("filtered-sat's streamed table layers (lower sat_resolution)", layer_bytes());
+  const std::size_t cells = std::size_t(na) * std::size_t(nb);
+  const std::size_t nodes = std::size_t(na + 1) * std::size_t(nb + 1);
+  std::vector<float> previous(cells), current(cells), next(cells), values(cells);
+  std::vector<double> lower(nodes, 0.0), upper(nodes, 0.0), rows(nodes, 0.0);
+  const double cell_volume = double(grid.cell) * grid.cell * grid.cell;
+  const float tolerance = kRefineTolerance / grid.cell;
+  const int n = samples_;
+  // Cell layer k from the light lies at grid index g(k) along the axis.
+  auto grid_layer = [&](int k) { return light_.sign > 0.0f ? layers - 1 - k : k; };
+  auto index = [&](int a, int b, int g) {
+    vec3 i(0.0f);
+    i[ka] = float(a);
+    i[kb] = float(b);
+    i[axis] = float(g);
+    return i;
+  };
+  with_sampler(shadows_.volume, [&](const auto& sampler) {
+    const ExtinctionField<std::decay_t<decltype(sampler)>> field{&shadows_, sampler};
+    auto centres = [&](int k, std::vector<float>& out) {
+      const int g = grid_layer(k);
+      parallel_for(0, nb, [&](std::int64_t first, std::int64_t last) {
+        for (std::int64_t b = first; b < last; ++b) {
+          for (int a = 0; a < na; ++a) {
+            out[std::size_t(a) + std::size_t(na) * std::size_t(b)] =
+                field(grid.world_from_grid(index(a, int(b), g) + 0.5f));
+          }
+        }
+      });
+    };
+    centres(0, current);
+    for (int k = 0; k < layers; ++k) {
+      if (k + 1 < layers) centres(k + 1, next);
+      const int g = grid_layer(k);
+      // The cell values as fill_extinction_cells gives them: the centre, or
+      // in a cell that differs from a face neighbour by more than the
+      // tolerance the mean over n^3 points, times the cell's volume.
+      parallel_for(0, nb, [&](std::int64_t first, std::int64_t last) {
+        for (std::int64_t b = first; b < last; ++b) {
+          for (int a = 0; a < na; ++a) {
+            const std::size_t c = std::size_t(a) + std::size_t(na) * std::size_t(b);
+            const double v = current[c];
+            float value = current[c];
+            if (n > 1) {
+              auto differs = [&](double w) { return std::abs(w - v) > double(tolerance); };
+              const bool edge = (a > 0 && differs(current[c - 1])) || (a + 1 < na && differs(current[c + 1])) ||
+                                (b > 0 && differs(current[c - std::size_t(na)])) ||
+                                (b + 1 < nb && differs(current[c + std::size_t(na)])) ||
+                                (k > 0 && differs(previous[c])) || (k + 1 < layers && differs(next[c]));
+              if (edge) {
+                const vec3 i = index(a, int(b), g);
+                double sum = 0.0;
+                for (int s = 0; s < n * n * n; ++s) {
+                  const vec3 sub((float(s % n) + 0.5f) / float(n), (float((s / n) % n) + 0.5f) / float(n),
+                                 (float(s / (n * n)) + 0.5f) / float(n));
+                  sum += double(field(grid.world_from_grid(i + sub)));
+                }
+                value = float(sum / double(n * n * n));
+              }
+            }
+            values[c] = float(double(value) * cell_volume);
+          }
+        }
+      });
+      // Node layer k + 1: node layer k plus the 2D summed-area table of the
+      // cell layer (rows first, then down the columns).
+      const std::size_t stride = std::size_t(na) + 1;
+      parallel_for(0, nb, [&](std::int64_t first, std::int64_t last) {
+        for (std::int64_t b = first; b < last; ++b) {
+          double run = 0.0;
+          double* row = rows.data() + stride * std::size_t(b + 1);
+          for (int a = 0; a < na; ++a) {
+            run += double(values[std::size_t(a) + std::size_t(na) * std::size_t(b)]);
+            row[a + 1] = run;
+          }
+        }
+      });
+      parallel_for(1, na + 1, [&](std::int64_t first, std::int64_t last) {
+        for (std::int64_t a = first; a < last; ++a) {
+          double column = 0.0;
+          for (int b = 1; b <= nb; ++b) {
+            const std::size_t i = std::size_t(a) + stride * std::size_t(b);
+            column += rows[i];
+            upper[i] = lower[i] + column;
+          }
+        }
+      });
+      visit(CsatLayerPair{lower.data(), upper.data(), na, nb, k});
+      std::swap(lower, upper);
+      std::swap(previous, current);
+      std::swap(current, next);
+    }
+    return 0;
+  });
+}
+
+}  // namespace penumbra
