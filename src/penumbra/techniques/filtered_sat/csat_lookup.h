@@ -18,7 +18,7 @@ namespace penumbra {
 // depth at the patch centre (a, b) (cell units, half-width `half` cells):
 // column(a, b) is the extinction integral over [0, a] x [0, b] times the
 // cuboid's extent along the light. Shared by the table lookup below and the
-// streamed evaluation (streamed_csat.h), which read their columns differently.
+// streamed evaluation (streamed_table.h), which read their columns differently.
 template <class Column>
 PENUMBRA_HD PENUMBRA_FORCE_INLINE float csat_patch_depth(const Column& column, float a, float b, float half,
                                                         float cell, const ShadowFilter& filter) {

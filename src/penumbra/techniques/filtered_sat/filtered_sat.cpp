@@ -4,7 +4,7 @@
 #include "penumbra/render/render_lit.h"
 #include "penumbra/render/scene_resources.h"
 #include "penumbra/techniques/filtered_sat/filtered_visibility.h"
-#include "penumbra/techniques/filtered_sat/streamed_csat.h"
+#include "penumbra/techniques/filtered_sat/streamed_table.h"
 #include "penumbra/techniques/sat_common/extinction_table.h"
 #include "penumbra/techniques/sat_common/plane_caches.h"
 #include "penumbra/techniques/sat_common/refined_cells.h"
@@ -28,8 +28,8 @@ constexpr double kMinFilterVoxels = 0.25, kMaxFilterVoxels = 256.0;  // filter_v
 // a voxel (a penumbra on the floor is at most the filter wide). Chosen by
 // measurement (docs/filtered-sat.md, "Memory").
 constexpr float kProbeTolerance = 0.025f;
-// table_streaming=auto streams a directional light's table when it would
-// take more than this (docs/filtered-sat.md, "Streamed tables").
+// table_streaming=auto streams a light's table when it would take more than
+// this (docs/filtered-sat.md, "Streamed tables").
 constexpr std::uint64_t kStreamTablesAbove = std::uint64_t(512) << 20;
 constexpr float kPlaneNodesPerFilter = 5.0f, kMinPlaneNodeVoxels = 0.25f, kMaxPlaneNodeVoxels = 1.0f;
 
@@ -255,15 +255,15 @@ class FilteredSat final : public Technique {
         }));
   }
   // Without kept tables, before light i's cache, bricks or grids: its table
-  // alone (LightTables::build's only_light), or for a directional light
-  // whose table streaming takes (table_streaming), no table but a stream.
+  // alone (LightTables::build's only_light), or where table_streaming takes
+  // it, no table but a stream of its layers.
   void prepare_light_table(const Scene& scene, const RenderView& shadows, float cell, const std::string& streaming,
                            std::size_t light) {
     stream_.reset();
-    if (streaming != "off" && placements_[light].kind == LightTableKind::Cartesian) {
+    if (streaming != "off" && placements_[light].kind != LightTableKind::None) {
       const LightTableLookup lookup =
           LightTables::lookup_without_table(shadows.box, scene.lights(), cell, int(light));
-      const ivec3 n = lookup.cartesian.cells + 1;
+      const ivec3 n = (lookup.kind == LightTableKind::Cartesian ? lookup.cartesian.cells : lookup.spherical.cells) + 1;
       const std::uint64_t table_bytes = std::uint64_t(n.x) * std::uint64_t(n.y) * std::uint64_t(n.z) * sizeof(float);
       if (streaming == "on" || table_bytes > kStreamTablesAbove) {
         tables_.release(placements_.size());
@@ -307,7 +307,7 @@ class FilteredSat final : public Technique {
   ShadowFilter shared_filter_;         // the lights beyond them
   std::vector<vec2> light_shapes_;     // per light: filter width (world) and gaussian (1) or box (0)
   LightTables tables_;
-  std::optional<StreamedCsat> stream_;  // during a prepare: the streamed table of the light being filled
+  std::optional<StreamedLightTable> stream_;  // during a prepare: the streamed table of the light being filled
   bool built_ = false;        // the last prepare finished
   bool tables_kept_ = false;  // tables_ holds every light's table (else none)
   ExtinctionInputs inputs_;   // what the tables and caches were built from
@@ -354,10 +354,9 @@ TechniqueInfo filtered_sat_info() {
                                  "samples per cache cell edge in the bricks of rough cells (0 = the tables per "
                                  "sample there, kept for the whole render; 1 is refused)"),
           ParameterSpec::choice("table_streaming", "auto", {"auto", "on", "off"},
-                                "without kept tables, evaluate a directional light's cache, bricks and floor grids "
-                                "layer by layer along the light instead of building its whole table (memory of "
-                                "two table layers, time of two to three table builds); auto = for tables over "
-                                "512 MiB"),
+                                "without kept tables, evaluate a light's cache, bricks and floor grids layer by "
+                                "layer along the light instead of building its whole table (memory of two table "
+                                "layers, time of three or four table builds); auto = for tables over 512 MiB"),
           ParameterSpec::real("shadow_density_scale", 1.0, 0.0, 100.0,
                               "multiplies the filtered optical depth (0 = unshadowed)"),
       }},

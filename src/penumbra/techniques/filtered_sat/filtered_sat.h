@@ -62,6 +62,10 @@
 //                         everywhere, 0: the tables in every cell that varies)
 //   cache_refinement      texels per cell edge of a rough cell's brick (0: the
 //                         tables there instead, which then stay; 1 refused)
+//   table_streaming       auto | on | off: when tables are released, a light's
+//                         cache, bricks and grids from a stream of its
+//                         table's layers instead of the table
+//                         (streamed_table.h); auto streams tables over 512 MiB
 //   shadow_density_scale  multiplies the filtered optical depth (Fig. 7b)
 // Passes
 //   prepare: the tables, each rebuilt when what it is made of changes: the
@@ -86,7 +90,12 @@
 //            after its bricks and plane grids (the paper's section 7), so
 //            memory holds the caches, bricks and grids and at most one
 //            table; a light that moves, a filter change or a plane move
-//            (for the grids) then rebuild the tables, one at a time
+//            (for the grids) then rebuild the tables, one at a time. A
+//            streamed light (table_streaming) holds no table: each batch of
+//            its points (cache texels, brick probes, brick texels, grid
+//            nodes) is sorted by its depth along the light and evaluated
+//            while two node layers of the table, summed from the light's
+//            face, stream past
 //   render:  one ray-casting pass; per lit sample one cache read per light,
 //            a brick read in rough cells (or one table lookup without
 //            bricks: 4 column sums for the box, 81 for the Gaussian); plane

@@ -72,7 +72,7 @@ class LightTables {
             int only_light = -1);
   // The lookup build() would give `light`, without building its table
   // (table empty): the grid, axis and sign of a directional light's CSAT,
-  // for filtered-sat's streamed evaluation (streamed_csat.h).
+  // for filtered-sat's streamed evaluation (streamed_table.h).
   static LightTableLookup lookup_without_table(const Box3& box, const std::vector<Light>& lights, float cell,
                                                int light);
   // Frees every table; `light_count` lookups of kind None remain.

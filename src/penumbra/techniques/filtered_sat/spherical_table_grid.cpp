@@ -91,6 +91,11 @@ SphericalTableGrid fit_spherical_grid(const Box3& box, vec3 light, float cell) {
   return grid;
 }
 
+double spherical_cell_measure(const SphericalTableGrid& grid, int j) {
+  const double theta0 = double(grid.lower.y) + double(grid.cell.y) * j;
+  return double(grid.cell.x) * (std::cos(theta0) - std::cos(theta0 + grid.cell.y)) * double(grid.cell.z);
+}
+
 SummedAreaTable build_spherical_extinction_table(const RenderView& shadows, const SphericalTableGrid& grid,
                                                  const std::string& what, int samples_per_axis) {
   SummedAreaTable table(grid.cells, what);
@@ -101,10 +106,7 @@ SummedAreaTable build_spherical_extinction_table(const RenderView& shadows, cons
     fill_extinction_cells(
         table, samples_per_axis, kRefineTolerance / width, field,
         [&](vec3 g) { return grid.world_from_spherical(grid.lower + g * grid.cell); },
-        [&](int j, int) {
-          const double theta0 = double(grid.lower.y) + double(grid.cell.y) * j;
-          return double(grid.cell.x) * (std::cos(theta0) - std::cos(theta0 + grid.cell.y)) * double(grid.cell.z);
-        });
+        [&](int j, int) { return spherical_cell_measure(grid, j); });
     return 0;
   });
   table.integrate();

@@ -49,6 +49,9 @@ struct SphericalTableGrid {
 // world units wide at the middle of the box's distance range.
 SphericalTableGrid fit_spherical_grid(const Box3& box, vec3 light, float cell);
 
+// The measure of a cell in polar row j: dphi (cos theta_j - cos theta_j+1) dr.
+double spherical_cell_measure(const SphericalTableGrid& grid, int j);
+
 // The SSAT: cell (i, j, k) holds sigma_t at its centre times its measure
 // dphi (cos theta_j - cos theta_j+1) dr. `what` names it in budget errors.
 SummedAreaTable build_spherical_extinction_table(const RenderView& shadows, const SphericalTableGrid& grid,

@@ -17,28 +17,35 @@
 
 namespace penumbra {
 
-// Prefix sum at (phi, theta, r). On a whole-turn grid phi is unwrapped:
-// every full turn below phi adds the sum of one complete turn, so boxes that
-// cross the seam at phi = +-pi need no splitting.
-PENUMBRA_HD inline double ssat_prefix(const SummedAreaTableView& table, const SphericalTableGrid& grid, float phi,
-                                      float theta, float r) {
+// Prefix sum at (phi, theta, r), prefix(q) reading the table at grid
+// coordinates q. On a whole-turn grid phi is unwrapped: every full turn
+// below phi adds the sum of one complete turn, so boxes that cross the seam
+// at phi = +-pi need no splitting.
+template <class Prefix>
+PENUMBRA_HD PENUMBRA_FORCE_INLINE double ssat_prefix_with(const Prefix& prefix, const SphericalTableGrid& grid,
+                                                          float phi, float theta, float r) {
   vec3 q = grid.grid_from_spherical(vec3(phi, theta, r));
-  if (!grid.full_turn) return table.prefix(q);
+  if (!grid.full_turn) return prefix(q);
   const float turn = float(grid.cells.x);
   const float turns = glm::floor(q.x / turn);
   q.x -= turns * turn;
-  const double base = table.prefix(q);
-  return turns == 0.0f ? base : base + double(turns) * table.prefix(vec3(turn, q.y, q.z));
+  const double base = prefix(q);
+  return turns == 0.0f ? base : base + double(turns) * prefix(vec3(turn, q.y, q.z));
 }
 
-PENUMBRA_HD inline float ssat_filtered_depth(const SummedAreaTableView& table, const SphericalTableGrid& grid,
-                                             const ShadowFilter& filter, vec3 p) {
-  const vec3 s = grid.spherical_from_world(p);
+// The pyramid ends this far from the light (<= 0: nothing lies between
+// the sample at spherical coordinates s and the light).
+PENUMBRA_HD inline float ssat_pyramid_end(const ShadowFilter& filter, vec3 s) {
+  return s.z > 0.0f ? s.z - filter.offset : 0.0f;
+}
+
+// The filtered depth at the sample at spherical coordinates s, whose
+// pyramid ends at radius end > 0, from a table read through prefix(q) (all
+// reads at end's radius: streamed_table.h reads two layers there).
+template <class Prefix>
+PENUMBRA_HD inline float ssat_filtered_depth_with(const Prefix& prefix, const SphericalTableGrid& grid,
+                                                  const ShadowFilter& filter, vec3 s, float end) {
   const float radius = s.z;
-  if (!(radius > 0.0f)) return 0.0f;
-  // The pyramid ends `offset` short of the sample, toward the light.
-  const float end = radius - filter.offset;
-  if (!(end > 0.0f)) return 0.0f;
   const float tangent_radius = radius * glm::sin(s.y);  // distance from the polar axis
   const float step = 2.0f * filter.half_width / float(filter.taps);
   double depth = 0.0, weight_sum = 0.0;
@@ -55,14 +62,26 @@ PENUMBRA_HD inline float ssat_filtered_depth(const SummedAreaTableView& table, c
       const float phi1 = polar ? s.x + kPi : s.x + glm::atan(u0 + step, tangent_radius);
       const double solid_angle = double(phi1 - phi0) * (double(glm::cos(theta0)) - double(glm::cos(theta1)));
       if (!(solid_angle > 0.0)) continue;
-      const double sum = ssat_prefix(table, grid, phi1, theta1, end) - ssat_prefix(table, grid, phi0, theta1, end) -
-                         ssat_prefix(table, grid, phi1, theta0, end) + ssat_prefix(table, grid, phi0, theta0, end);
+      const double sum = ssat_prefix_with(prefix, grid, phi1, theta1, end) -
+                         ssat_prefix_with(prefix, grid, phi0, theta1, end) -
+                         ssat_prefix_with(prefix, grid, phi1, theta0, end) +
+                         ssat_prefix_with(prefix, grid, phi0, theta0, end);
       const double w = double(filter.weights[i]) * double(filter.weights[j]);
       depth += w * sum / solid_angle;
       weight_sum += w;
     }
   }
   return weight_sum > 0.0 ? float(glm::max(depth / weight_sum, 0.0)) : 0.0f;
+}
+
+PENUMBRA_HD inline float ssat_filtered_depth(const SummedAreaTableView& table, const SphericalTableGrid& grid,
+                                             const ShadowFilter& filter, vec3 p) {
+  const vec3 s = grid.spherical_from_world(p);
+  // The pyramid ends `offset` short of the sample, toward the light.
+  const float end = ssat_pyramid_end(filter, s);
+  if (!(end > 0.0f)) return 0.0f;
+  return ssat_filtered_depth_with([&](vec3 q) PENUMBRA_FORCE_INLINE_LAMBDA { return table.prefix(q); }, grid, filter,
+                                  s, end);
 }
 
 }  // namespace penumbra

@@ -1,7 +1,8 @@
-#include "penumbra/techniques/filtered_sat/streamed_csat.h"
+#include "penumbra/techniques/filtered_sat/streamed_table.h"
 
 #include "penumbra/base/error.h"
 #include "penumbra/base/memory_budget.h"
+#include "penumbra/techniques/filtered_sat/spherical_table_grid.h"
 #include "penumbra/techniques/sat_common/extinction_table.h"
 
 #include <cmath>
@@ -10,16 +11,35 @@
 
 namespace penumbra {
 
-std::uint64_t StreamedCsat::layer_bytes() const {
-  const ivec3 c = light_.cartesian.cells;
-  const int axis = light_.axis;
+namespace {
+
+// What the stream walks: cells[axis] layers of cells[ka] x cells[kb] cells
+// (ka before kb in the node layers); cell layer k from the light at grid
+// index reversed ? layers - 1 - k : k along the axis; world(g) the world
+// point of grid coordinate g; measure(a, b) a cell's measure (volume, or
+// solid angle times dr); tolerance as fill_extinction_cells takes it.
+struct LayerGeometry {
+  ivec3 cells{1};
+  int axis = 2, ka = 0, kb = 1;
+  bool reversed = false;
+  float tolerance = 0.0f;
+};
+
+int axis_of(const LightTableLookup& light) { return light.kind == LightTableKind::Cartesian ? light.axis : 2; }
+
+}  // namespace
+
+std::uint64_t StreamedLightTable::layer_bytes() const {
+  const bool cartesian = light_.kind == LightTableKind::Cartesian;
+  const ivec3 c = cartesian ? light_.cartesian.cells : light_.spherical.cells;
+  const int axis = axis_of(light_);
   const std::uint64_t na = std::uint64_t(c[axis == 0 ? 1 : 0]), nb = std::uint64_t(c[axis == 2 ? 1 : 2]);
   // Three layers of centres and one of cell values (float); two node
   // layers and the row sums (double).
   return 4 * na * nb * sizeof(float) + 3 * (na + 1) * (nb + 1) * sizeof(double);
 }
 
-void StreamedCsat::check_order(std::int64_t count) {
+void StreamedLightTable::check_order(std::int64_t count) {
   if (std::uint64_t(count) > std::numeric_limits<std::uint32_t>::max()) {
     throw OutOfMemoryBudget("filtered-sat's streamed table: the points' order", std::uint64_t(count) * 8,
                             memory_budget_bytes());
@@ -28,37 +48,34 @@ void StreamedCsat::check_order(std::int64_t count) {
                       checked_product({std::uint64_t(count), 8}));
 }
 
-void StreamedCsat::stream(const std::function<void(const CsatLayerPair&)>& visit) const {
-  const CartesianTableGrid& grid = light_.cartesian;
-  const int axis = light_.axis;
-  const int ka = axis == 0 ? 1 : 0, kb = axis == 2 ? 1 : 2;
-  const int layers = grid.cells[axis], na = grid.cells[ka], nb = grid.cells[kb];
-  check_memory_budget("filtered-sat's streamed table layers (lower sat_resolution)", layer_bytes());
+// The stream over one geometry: see StreamedLightTable::stream.
+template <class World, class Measure>
+static void stream_layers(const RenderView& shadows, const LayerGeometry& g, int samples, const World& world,
+                          const Measure& measure, const std::function<void(const SatLayerPair&)>& visit) {
+  const int axis = g.axis, ka = g.ka, kb = g.kb;
+  const int layers = g.cells[axis], na = g.cells[ka], nb = g.cells[kb];
   const std::size_t cells = std::size_t(na) * std::size_t(nb);
   const std::size_t nodes = std::size_t(na + 1) * std::size_t(nb + 1);
   std::vector<float> previous(cells), current(cells), next(cells), values(cells);
   std::vector<double> lower(nodes, 0.0), upper(nodes, 0.0), rows(nodes, 0.0);
-  const double cell_volume = double(grid.cell) * grid.cell * grid.cell;
-  const float tolerance = kRefineTolerance / grid.cell;
-  const int n = samples_;
-  // Cell layer k from the light lies at grid index g(k) along the axis.
-  auto grid_layer = [&](int k) { return light_.sign > 0.0f ? layers - 1 - k : k; };
-  auto index = [&](int a, int b, int g) {
+  const float tolerance = g.tolerance;
+  const int n = samples;
+  auto grid_layer = [&](int k) { return g.reversed ? layers - 1 - k : k; };
+  auto index = [&](int a, int b, int layer) {
     vec3 i(0.0f);
     i[ka] = float(a);
     i[kb] = float(b);
-    i[axis] = float(g);
+    i[axis] = float(layer);
     return i;
   };
-  with_sampler(shadows_.volume, [&](const auto& sampler) {
-    const ExtinctionField<std::decay_t<decltype(sampler)>> field{&shadows_, sampler};
+  with_sampler(shadows.volume, [&](const auto& sampler) {
+    const ExtinctionField<std::decay_t<decltype(sampler)>> field{&shadows, sampler};
     auto centres = [&](int k, std::vector<float>& out) {
-      const int g = grid_layer(k);
+      const int layer = grid_layer(k);
       parallel_for(0, nb, [&](std::int64_t first, std::int64_t last) {
         for (std::int64_t b = first; b < last; ++b) {
           for (int a = 0; a < na; ++a) {
-            out[std::size_t(a) + std::size_t(na) * std::size_t(b)] =
-                field(grid.world_from_grid(index(a, int(b), g) + 0.5f));
+            out[std::size_t(a) + std::size_t(na) * std::size_t(b)] = field(world(index(a, int(b), layer) + 0.5f));
           }
         }
       });
@@ -66,10 +83,10 @@ void StreamedCsat::stream(const std::function<void(const CsatLayerPair&)>& visit
     centres(0, current);
     for (int k = 0; k < layers; ++k) {
       if (k + 1 < layers) centres(k + 1, next);
-      const int g = grid_layer(k);
+      const int layer = grid_layer(k);
       // The cell values as fill_extinction_cells gives them: the centre, or
       // in a cell that differs from a face neighbour by more than the
-      // tolerance the mean over n^3 points, times the cell's volume.
+      // tolerance the mean over n^3 points, times the cell's measure.
       parallel_for(0, nb, [&](std::int64_t first, std::int64_t last) {
         for (std::int64_t b = first; b < last; ++b) {
           for (int a = 0; a < na; ++a) {
@@ -83,17 +100,17 @@ void StreamedCsat::stream(const std::function<void(const CsatLayerPair&)>& visit
                                 (b + 1 < nb && differs(current[c + std::size_t(na)])) ||
                                 (k > 0 && differs(previous[c])) || (k + 1 < layers && differs(next[c]));
               if (edge) {
-                const vec3 i = index(a, int(b), g);
+                const vec3 i = index(a, int(b), layer);
                 double sum = 0.0;
                 for (int s = 0; s < n * n * n; ++s) {
                   const vec3 sub((float(s % n) + 0.5f) / float(n), (float((s / n) % n) + 0.5f) / float(n),
                                  (float(s / (n * n)) + 0.5f) / float(n));
-                  sum += double(field(grid.world_from_grid(i + sub)));
+                  sum += double(field(world(i + sub)));
                 }
                 value = float(sum / double(n * n * n));
               }
             }
-            values[c] = float(double(value) * cell_volume);
+            values[c] = float(double(value) * measure(a, int(b)));
           }
         }
       });
@@ -120,13 +137,40 @@ void StreamedCsat::stream(const std::function<void(const CsatLayerPair&)>& visit
           }
         }
       });
-      visit(CsatLayerPair{lower.data(), upper.data(), na, nb, k});
+      visit(SatLayerPair{lower.data(), upper.data(), na, nb, k});
       std::swap(lower, upper);
       std::swap(previous, current);
       std::swap(current, next);
     }
     return 0;
   });
+}
+
+void StreamedLightTable::stream(const std::function<void(const SatLayerPair&)>& visit) const {
+  check_memory_budget("filtered-sat's streamed table layers (lower sat_resolution)", layer_bytes());
+  LayerGeometry g;
+  if (light_.kind == LightTableKind::Cartesian) {
+    const CartesianTableGrid& grid = light_.cartesian;
+    g.cells = grid.cells;
+    g.axis = light_.axis;
+    g.ka = g.axis == 0 ? 1 : 0;
+    g.kb = g.axis == 2 ? 1 : 2;
+    g.reversed = light_.sign > 0.0f;  // the light lies toward +axis: its face is the last layer
+    g.tolerance = kRefineTolerance / grid.cell;
+    const double volume = double(grid.cell) * grid.cell * grid.cell;
+    stream_layers(
+        shadows_, g, samples_, [&](vec3 q) { return grid.world_from_grid(q); },
+        [&](int, int) { return volume; }, visit);
+    return;
+  }
+  // A point light's SSAT: (phi, theta) across, r along the light from its
+  // near end; the measures as build_spherical_extinction_table's.
+  const SphericalTableGrid& grid = light_.spherical;
+  g.cells = grid.cells;
+  g.tolerance = kRefineTolerance / grid.cell.z;
+  stream_layers(
+      shadows_, g, samples_, [&](vec3 q) { return grid.world_from_spherical(grid.lower + q * grid.cell); },
+      [&](int, int theta) { return spherical_cell_measure(grid, theta); }, visit);
 }
 
 }  // namespace penumbra
