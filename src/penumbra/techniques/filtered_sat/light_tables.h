@@ -71,7 +71,7 @@ class LightTables {
   int build(const RenderView& shadows, const std::vector<Light>& lights, float cell, bool reuse = false,
             int only_light = -1);
   // The lookup build() would give `light`, without building its table
-  // (table empty): the grid, axis and sign of a directional light's CSAT,
+  // (table empty): the grid of its CSAT (with axis and sign) or SSAT,
   // for filtered-sat's streamed evaluation (streamed_table.h).
   static LightTableLookup lookup_without_table(const Box3& box, const std::vector<Light>& lights, float cell,
                                                int light);

@@ -4,7 +4,7 @@
 // evaluate_batch, so that it may be either a function of one world point
 // (the tables are read point by point, in parallel) or a batch evaluator
 // that sees every point first: filtered-sat's streamed tables
-// (filtered_sat/streamed_csat.h) sort the points by their distance from the
+// (filtered_sat/streamed_table.h) sort the points by their distance from the
 // light and build the table one layer at a time past them, which needs the
 // whole batch up front.
 #include "penumbra/base/math.h"
