@@ -182,5 +182,29 @@ TEST(FilteredSatOnRealData, BoxAndGaussianOfComparableWidthLookAlikeOnTheEngine)
   EXPECT_GT(b.mean, 5.0 * a.mean);
 }
 
+// The measurement behind docs/filtered-sat.md's tables of the defaults
+// against per-sample lookups on whole scenes (slow: run it by name with
+// --gtest_also_run_disabled_tests). Per scene and cache_refinement: |dL*|
+// mean and p99 against shadow_cache=false, and aux_bytes.
+TEST(FilteredSatOnRealData, DISABLED_DefaultCacheOnWholeScenes) {
+  if (!have_engine()) GTEST_SKIP() << "the engine CT is not in " << PENUMBRA_SHARED_DATA_DIR;
+  const char* names[] = {"engine", "engine-point", "head-directional", "head-point", "memory-256-two-lights"};
+  for (const char* name : names) {
+    Scene scene = load_scene(std::filesystem::path(PENUMBRA_SOURCE_DIR) / "scenes" / (std::string(name) + ".json"));
+    RenderSettings r = scene.render();
+    r.width = r.height = std::string(name).rfind("memory", 0) == 0 ? 128 : 192;
+    scene.set_render(r);
+    FilteredSatRenderer reference(scene);
+    const Image direct = reference.render({{"shadow_cache", false}});
+    for (const double refine : {4.0, 6.0}) {
+      FilteredSatRenderer renderer(scene);
+      const Image cached = renderer.render({{"cache_refinement", refine}});
+      const LightnessDifference d = lightness_difference(cached, direct);
+      std::printf("%s cache_refinement %.0f: mean %.3f p99 %.3f max %.2f, aux %.1f MiB\n", name, refine, d.mean,
+                  d.p99, d.max, double(renderer.bytes()) / (1024.0 * 1024.0));
+    }
+  }
+}
+
 }  // namespace
 }  // namespace penumbra
