@@ -50,8 +50,9 @@ void StreamedLightTable::check_order(std::int64_t count) {
 
 // The stream over one geometry: see StreamedLightTable::stream.
 template <class World, class Measure>
-static void stream_layers(const RenderView& shadows, const LayerGeometry& g, int samples, const World& world,
-                          const Measure& measure, const std::function<void(const SatLayerPair&)>& visit) {
+static void stream_layers(const RenderView& shadows, const LayerGeometry& g, int samples, int until,
+                          const World& world, const Measure& measure,
+                          const std::function<void(const SatLayerPair&)>& visit) {
   const int axis = g.axis, ka = g.ka, kb = g.kb;
   const int layers = g.cells[axis], na = g.cells[ka], nb = g.cells[kb];
   const std::size_t cells = std::size_t(na) * std::size_t(nb);
@@ -81,7 +82,7 @@ static void stream_layers(const RenderView& shadows, const LayerGeometry& g, int
       });
     };
     centres(0, current);
-    for (int k = 0; k < layers; ++k) {
+    for (int k = 0; k < until; ++k) {
       if (k + 1 < layers) centres(k + 1, next);
       const int layer = grid_layer(k);
       // The cell values as fill_extinction_cells gives them: the centre, or
@@ -146,7 +147,7 @@ static void stream_layers(const RenderView& shadows, const LayerGeometry& g, int
   });
 }
 
-void StreamedLightTable::stream(const std::function<void(const SatLayerPair&)>& visit) const {
+void StreamedLightTable::stream(int until, const std::function<void(const SatLayerPair&)>& visit) const {
   check_memory_budget("filtered-sat's streamed table layers (lower sat_resolution)", layer_bytes());
   LayerGeometry g;
   if (light_.kind == LightTableKind::Cartesian) {
@@ -159,7 +160,7 @@ void StreamedLightTable::stream(const std::function<void(const SatLayerPair&)>& 
     g.tolerance = kRefineTolerance / grid.cell;
     const double volume = double(grid.cell) * grid.cell * grid.cell;
     stream_layers(
-        shadows_, g, samples_, [&](vec3 q) { return grid.world_from_grid(q); },
+        shadows_, g, samples_, until, [&](vec3 q) { return grid.world_from_grid(q); },
         [&](int, int) { return volume; }, visit);
     return;
   }
@@ -169,7 +170,7 @@ void StreamedLightTable::stream(const std::function<void(const SatLayerPair&)>& 
   g.cells = grid.cells;
   g.tolerance = kRefineTolerance / grid.cell.z;
   stream_layers(
-      shadows_, g, samples_, [&](vec3 q) { return grid.world_from_spherical(grid.lower + q * grid.cell); },
+      shadows_, g, samples_, until, [&](vec3 q) { return grid.world_from_spherical(grid.lower + q * grid.cell); },
       [&](int, int theta) { return spherical_cell_measure(grid, theta); }, visit);
 }
 

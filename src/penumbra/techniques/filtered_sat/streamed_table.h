@@ -126,8 +126,8 @@ class StreamedLightTable {
   std::uint64_t layer_bytes() const;
 
  private:
-  // visit(pair) for node layers n = 0 .. layers - 1, nearest the light first.
-  void stream(const std::function<void(const SatLayerPair&)>& visit) const;
+  // visit(pair) for node layers n = 0 .. until - 1, nearest the light first.
+  void stream(int until, const std::function<void(const SatLayerPair&)>& visit) const;
   // The bytes of a point order of `count` points, checked against the budget.
   static void check_order(std::int64_t count);
 
@@ -181,7 +181,10 @@ void StreamedLightTable::depths(const ShadowFilter& filter, std::int64_t count, 
     }
   }
   std::vector<std::int32_t>().swap(layer);
-  stream([&](const SatLayerPair& pair) {
+  // The stream stops after the deepest layer that has points.
+  int until = layers;
+  while (until > 0 && begin[std::size_t(until)] == begin[std::size_t(until) - 1]) --until;
+  stream(until, [&](const SatLayerPair& pair) {
     const std::int64_t first_point = begin[std::size_t(pair.n)], end_point = begin[std::size_t(pair.n) + 1];
     parallel_for(first_point, end_point, [&](std::int64_t first, std::int64_t last) {
       for (std::int64_t k = first; k < last; ++k) {
