@@ -96,6 +96,9 @@ class FilteredSat final : public Technique {
     // while it reads a table of the same placement (from the same extinction).
     ParameterValues cache_params = params;
     cache_params.set("sat_resolution", params.table().at("sat_resolution").default_value);
+    // Streamed or built, a light's table gives the same depths (to its
+    // rounding): switching table_streaming rebuilds nothing.
+    cache_params.set("table_streaming", params.table().at("table_streaming").default_value);
     // Without bricks the tolerance is read at render time only.
     if (!bricks) {
       cache_params.set("cache_tolerance", params.table().at("cache_tolerance").default_value);

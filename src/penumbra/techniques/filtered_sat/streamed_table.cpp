@@ -95,21 +95,12 @@ static void stream_layers(const RenderView& shadows, const LayerGeometry& g, int
             const double v = current[c];
             float value = current[c];
             if (n > 1) {
-              auto differs = [&](double w) { return std::abs(w - v) > double(tolerance); };
+              auto differs = [&](double w) { return extinction_cells_differ(v, w, tolerance); };
               const bool edge = (a > 0 && differs(current[c - 1])) || (a + 1 < na && differs(current[c + 1])) ||
                                 (b > 0 && differs(current[c - std::size_t(na)])) ||
                                 (b + 1 < nb && differs(current[c + std::size_t(na)])) ||
                                 (k > 0 && differs(previous[c])) || (k + 1 < layers && differs(next[c]));
-              if (edge) {
-                const vec3 i = index(a, int(b), layer);
-                double sum = 0.0;
-                for (int s = 0; s < n * n * n; ++s) {
-                  const vec3 sub((float(s % n) + 0.5f) / float(n), (float((s / n) % n) + 0.5f) / float(n),
-                                 (float(s / (n * n)) + 0.5f) / float(n));
-                  sum += double(field(world(i + sub)));
-                }
-                value = float(sum / double(n * n * n));
-              }
+              if (edge) value = refined_extinction_mean(field, world, index(a, int(b), layer), n);
             }
             values[c] = float(double(value) * measure(a, int(b)));
           }

@@ -137,7 +137,12 @@ TEST(StreamedLightTable, StreamingLeavesTheImageAndTheCachesAsTheTableDoes) {
   const double error = rmse(a, b);
   std::printf("streamed against built: rmse %.3g\n", error);
   EXPECT_LT(error, 1e-6);
-  // A colour change rebuilds nothing; a new direction streams again.
+  // Switching the streaming and a colour change rebuild nothing; a new
+  // direction streams again.
+  const std::uint64_t built_rebuilds = built->rebuilds();
+  built->prepare(scene, on);
+  EXPECT_EQ(built->rebuilds(), built_rebuilds);
+  built->prepare(scene, off);
   const std::uint64_t before = streamed->rebuilds();
   Scene recoloured = scene;
   std::vector<Light> lights = scene.lights();

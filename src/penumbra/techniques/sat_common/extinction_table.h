@@ -50,6 +50,25 @@ template <class Sampler> struct ExtinctionField {
 // midpoint rule does better there, though each cell's own mean is closer.)
 inline constexpr float kRefineTolerance = 0.1f;
 
+// Whether a cell whose centre holds v is refined for a face neighbour's
+// centre value w (fill_extinction_cells; filtered-sat's streamed tables).
+inline bool extinction_cells_differ(double v, double w, float tolerance) {
+  return std::abs(w - v) > double(tolerance);
+}
+
+// The mean of field(point(cell + sub)) over the n^3 sub-cell centres sub of
+// the cell at grid coordinates `cell` (its lower corner).
+template <class Field, class Point>
+float refined_extinction_mean(const Field& field, const Point& point, vec3 cell, int n) {
+  double sum = 0.0;
+  for (int s = 0; s < n * n * n; ++s) {
+    const vec3 sub((float(s % n) + 0.5f) / float(n), (float((s / n) % n) + 0.5f) / float(n),
+                   (float(s / (n * n)) + 0.5f) / float(n));
+    sum += double(field(point(cell + sub)));
+  }
+  return float(sum / double(n * n * n));
+}
+
 // The sub-cell points per axis that put samples at most half a voxel apart
 // in a table of `cell_voxels` voxels per cell (at least 1).
 int extinction_samples_per_axis(float cell_voxels);
@@ -100,7 +119,7 @@ void fill_extinction_cells(SummedAreaTable& table, int samples_per_axis, float t
         const float* zp = k + 1 < cells.z ? table.cell_row(j, k + 1) : nullptr;
         for (int i = 0; i < cells.x; ++i) {
           const double v = c[i];
-          auto differs = [&](double w) { return std::abs(w - v) > double(tolerance); };
+          auto differs = [&](double w) { return extinction_cells_differ(v, w, tolerance); };
           const bool edge = (i > 0 && differs(c[i - 1])) || (i + 1 < cells.x && differs(c[i + 1])) ||
                             (ym && differs(ym[i])) || (yp && differs(yp[i])) || (zm && differs(zm[i])) ||
                             (zp && differs(zp[i]));
@@ -114,13 +133,7 @@ void fill_extinction_cells(SummedAreaTable& table, int samples_per_axis, float t
         float* c = table.cell_row(j, k);
         for (int i = 0; i < cells.x; ++i) {
           if (!(refine[std::size_t(row * words + i / 64)] >> (i % 64) & 1)) continue;
-          double sum = 0.0;
-          for (int s = 0; s < n * n * n; ++s) {
-            const vec3 sub((float(s % n) + 0.5f) / float(n), (float((s / n) % n) + 0.5f) / float(n),
-                           (float(s / (n * n)) + 0.5f) / float(n));
-            sum += double(field(point(vec3(i, j, k) + sub)));
-          }
-          c[i] = float(sum / double(n * n * n));
+          c[i] = refined_extinction_mean(field, point, vec3(i, j, k), n);
         }
       }
     });

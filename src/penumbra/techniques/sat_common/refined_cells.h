@@ -25,6 +25,7 @@
 // a 64-bit mask of the cells that have a brick and the index of its first
 // brick, so a cell's brick is block_first + popcount(mask below its bit).
 #include "penumbra/base/math.h"
+#include "penumbra/base/memory_budget.h"
 #include "penumbra/base/parallel.h"
 #include "penumbra/base/vec.h"
 #include "penumbra/techniques/sat_common/batch.h"
@@ -125,6 +126,9 @@ class RefinedCells {
     static constexpr float kProbes[7][3] = {{0.5f, 0.5f, 0.5f}, {0.0f, 0.5f, 0.5f}, {1.0f, 0.5f, 0.5f},
                                             {0.5f, 0.0f, 0.5f}, {0.5f, 1.0f, 0.5f}, {0.5f, 0.5f, 0.0f},
                                             {0.5f, 0.5f, 1.0f}};
+    // The probes' depths, then the bricks' texels in float, live only here.
+    check_memory_budget("the shadow cache's refined cells: their probes",
+                        checked_product({std::uint64_t(candidates.size()), 7 * sizeof(float) + 1}));
     std::vector<float> probe_depth(candidates.size() * 7);
     evaluate_batch(
         depth, std::int64_t(probe_depth.size()),
@@ -134,28 +138,35 @@ class RefinedCells {
           return view.world_from_index(vec3(cell_of(c / 64, int(c % 64))) + vec3(f[0], f[1], f[2]));
         },
         probe_depth.data());
-    // Keep the candidates whose trilinear read misses a probe.
+    // Keep the candidates whose trilinear read misses a probe (decided in
+    // parallel, then set in the masks).
+    std::vector<std::uint8_t> keep(candidates.size(), 0);
+    parallel_for(0, std::int64_t(candidates.size()), [&](std::int64_t first, std::int64_t last) {
+      for (std::int64_t n = first; n < last; ++n) {
+        const ivec3 c = cell_of(candidates[std::size_t(n)] / 64, int(candidates[std::size_t(n)] % 64));
+        float corner[8];
+        for (int k = 0; k < 8; ++k) {
+          const ivec3 q = glm::min(c + ivec3(k & 1, (k >> 1) & 1, (k >> 2) & 1), dims - 1);
+          corner[k] = data[std::size_t(q.x) + std::size_t(dims.x) * (std::size_t(q.y) + std::size_t(dims.y) * q.z)];
+        }
+        for (int probe = 0; probe < 7; ++probe) {
+          const float* f = kProbes[probe];
+          float read = 0.0f;
+          for (int k = 0; k < 8; ++k) {
+            read += corner[k] * (k & 1 ? f[0] : 1.0f - f[0]) * (k & 2 ? f[1] : 1.0f - f[1]) *
+                    (k & 4 ? f[2] : 1.0f - f[2]);
+          }
+          const float truth = exp_nonpositive(-probe_depth[std::size_t(n) * 7 + std::size_t(probe)]);
+          if (std::abs(truth - read) > probe_tolerance) {
+            keep[std::size_t(n)] = 1;
+            break;
+          }
+        }
+      }
+    });
     std::fill(masks_.begin(), masks_.end(), std::uint64_t(0));
     for (std::size_t n = 0; n < candidates.size(); ++n) {
-      const ivec3 c = cell_of(candidates[n] / 64, int(candidates[n] % 64));
-      float corner[8];
-      for (int k = 0; k < 8; ++k) {
-        const ivec3 q = glm::min(c + ivec3(k & 1, (k >> 1) & 1, (k >> 2) & 1), dims - 1);
-        corner[k] = data[std::size_t(q.x) + std::size_t(dims.x) * (std::size_t(q.y) + std::size_t(dims.y) * q.z)];
-      }
-      for (int probe = 0; probe < 7; ++probe) {
-        const float* f = kProbes[probe];
-        float read = 0.0f;
-        for (int k = 0; k < 8; ++k) {
-          read += corner[k] * (k & 1 ? f[0] : 1.0f - f[0]) * (k & 2 ? f[1] : 1.0f - f[1]) *
-                  (k & 4 ? f[2] : 1.0f - f[2]);
-        }
-        const float truth = exp_nonpositive(-probe_depth[n * 7 + std::size_t(probe)]);
-        if (std::abs(truth - read) > probe_tolerance) {
-          masks_[std::size_t(candidates[n] / 64)] |= std::uint64_t(1) << (candidates[n] % 64);
-          break;
-        }
-      }
+      if (keep[n]) masks_[std::size_t(candidates[n] / 64)] |= std::uint64_t(1) << (candidates[n] % 64);
     }
     std::vector<float>().swap(probe_depth);
     allocate(refine);
@@ -169,6 +180,8 @@ class RefinedCells {
     }
     const int n = refine;
     const std::int64_t per_brick = std::int64_t(n) * n * n;
+    check_memory_budget("the shadow cache's refined cells: their texels' depths",
+                        checked_product({std::uint64_t(brick_cells.size()), std::uint64_t(per_brick), sizeof(float)}));
     std::vector<float> tau(brick_cells.size() * std::size_t(per_brick));
     evaluate_batch(
         depth, std::int64_t(tau.size()),
