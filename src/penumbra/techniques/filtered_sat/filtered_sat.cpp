@@ -23,11 +23,13 @@ namespace {
 constexpr double kDefaultFilterVoxels = 5.0;
 constexpr double kMinFilterVoxels = 0.25, kMaxFilterVoxels = 256.0;  // filter_voxels' range
 // Refined cells: a rough cache cell gets a brick where its trilinear read
-// misses the visibility by more than this at a probe. Plane grids: nodes a
+// misses the cube root of the visibility by more than this at a probe, and
+// the coarsest brick whose read misses it by no more halfway between its
+// texels (a lightness step of about 116 x 0.013 cbrt(Y) L*). Plane grids: nodes a
 // fifth of the light's filter width apart, between a quarter of a voxel and
 // a voxel (a penumbra on the floor is at most the filter wide). Chosen by
-// measurement (docs/filtered-sat.md, "Memory").
-constexpr float kProbeTolerance = 0.025f;
+// measurement (docs/filtered-sat.md, "Memory" and "Adaptive bricks").
+constexpr float kProbeTolerance = 0.013f;
 // table_streaming=auto streams a light's table when it would take more than
 // this (docs/filtered-sat.md, "Streamed tables").
 constexpr std::uint64_t kStreamTablesAbove = std::uint64_t(512) << 20;
@@ -349,13 +351,14 @@ TechniqueInfo filtered_sat_info() {
                               "store each light's transmittance on a grid instead of reading the tables per sample"),
           ParameterSpec::real("cache_resolution", 0.5, 0.05, 2.0,
                               "shadow cache grid size as a fraction of the data grid"),
-          ParameterSpec::real("cache_tolerance", 0.05, 0.0, 1.0,
+          ParameterSpec::real("cache_tolerance", 0.03, 0.0, 1.0,
                               "cache cells whose texels differ by more than this read their brick, a finer grid "
                               "built with the cache (0 = the tables per sample, 1 = the cache everywhere); each "
                               "light's table is released once its cache, bricks and floor grids are filled"),
-          ParameterSpec::integer("cache_refinement", 4, 0, 8,
-                                 "samples per cache cell edge in the bricks of rough cells (0 = the tables per "
-                                 "sample there, kept for the whole render; 1 is refused)"),
+          ParameterSpec::integer("cache_refinement", 6, 0, 8,
+                                 "samples per cache cell edge in the finest bricks of rough cells; each cell gets "
+                                 "the coarsest of 2, 4, ... up to this that reads the tables well (0 = the tables "
+                                 "per sample there, kept for the whole render; 1 is refused)"),
           ParameterSpec::choice("table_streaming", "auto", {"auto", "on", "off"},
                                 "without kept tables, evaluate a light's cache, bricks and floor grids layer by "
                                 "layer along the light instead of building its whole table (memory of two table "

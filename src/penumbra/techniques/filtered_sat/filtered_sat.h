@@ -60,8 +60,10 @@
 //   cache_tolerance       cache cells whose 8 texels differ by more than this
 //                         are rough: they read their bricks (1: the cache
 //                         everywhere, 0: the tables in every cell that varies)
-//   cache_refinement      texels per cell edge of a rough cell's brick (0: the
-//                         tables there instead, which then stay; 1 refused)
+//   cache_refinement      texels per cell edge of the finest bricks; a rough
+//                         cell gets the coarsest of 2, 4, ... up to this whose
+//                         read meets the probe tolerance (0: the tables there
+//                         instead, which then stay; 1 refused)
 //   table_streaming       auto | on | off: when tables are released, a light's
 //                         cache, bricks and grids from a stream of its
 //                         table's layers instead of the table
@@ -77,9 +79,10 @@
 //            density scale or cache settings change (a light's size changes
 //            only its own derived filter and cache). With each light's
 //            cache, while its table lives: bricks of its rough cells
-//            (sat_common/refined_cells.h: refine^3 16-bit optical depths,
-//            for the cells whose trilinear read misses the visibility by
-//            more than 0.025 at a probe) and a grid on each opaque plane
+//            (sat_common/refined_cells.h: n^3 16-bit optical depths, n from
+//            2 to cache_refinement as the cell needs, for the cells whose
+//            trilinear read misses the cube root of the visibility by more
+//            than 0.013 at a probe) and a grid on each opaque plane
 //            (sat_common/plane_caches.h over the box grown by the patch's
 //            reach, nodes a fifth of the filter apart within 0.25-1 voxel).
 //            Tables are float residuals against double block corners

@@ -126,14 +126,15 @@ struct CachedFilteredVisibility {
     if (refined) {
       std::vector<RefinedCellsView> copy(refined, refined + m.light_count());
       for (RefinedCellsView& r : copy) {
-        if (r.refine <= 0) continue;
         const std::size_t blocks = std::size_t(r.blocks.x) * r.blocks.y * r.blocks.z;
-        const std::size_t n = std::size_t(r.refine);
-        r.block_first = m.structure(r.block_first, blocks, "the shadow caches' refined cells");
-        r.block_mask = m.structure(r.block_mask, blocks, "the shadow caches' refined cells");
-        r.texels = r.bricks > 0 ? m.structure(r.texels, std::size_t(r.bricks) * n * n * n,
-                                              "the shadow caches' refined cells")
-                                : nullptr;
+        for (int l = 0; l < r.levels; ++l) {
+          BrickLevelView& v = r.level[l];
+          if (v.bricks == 0) continue;
+          const std::size_t n = std::size_t(v.refine);
+          v.block_first = m.structure(v.block_first, blocks, "the shadow caches' refined cells");
+          v.block_mask = m.structure(v.block_mask, blocks, "the shadow caches' refined cells");
+          v.texels = m.structure(v.texels, std::size_t(v.bricks) * n * n * n, "the shadow caches' refined cells");
+        }
       }
       device_refined = m.frame(copy, "the shadow caches' refined cells");
     }

@@ -2,17 +2,24 @@
 // Refined cells of a shadow cache (issue 22): for each cache cell whose eight
 // texels differ by more than a tolerance (where the visibility jumps, at lit
 // surfaces and sharp shadow edges) and whose trilinear read misses the
-// visibility at a probe, a brick of refine^3 texels at the centres of the
-// cell's refine^3 sub-cells, so that rendering there reads a fine sample
-// instead of the light tables. The tables can then be released once the
-// cache and its bricks are filled.
+// visibility at a probe, a brick of n^3 texels at the centres of the cell's
+// n^3 sub-cells, so that rendering there reads a fine sample instead of the
+// light tables. The tables can then be released once the cache and its
+// bricks are filled.
+//
+// A brick's resolution follows its cell: n is the coarsest of 2, 4, ... up
+// to the finest `refine` whose read meets the tolerance halfway between its
+// texels, so a cell with a plane surface costs 8 texels and only the cells
+// of thin or curved structures (a skull's bone under grazing light) take
+// refine^3. Misses are measured on the cube root of the visibility, the
+// scale of lightness (docs/filtered-sat.md, "Adaptive bricks").
 //
 // A brick's read is trilinear between its own texels only, extrapolated
 // linearly over the half sub-cell between its outer texels and the cell's
-// faces (so refine >= 2). Texel-centred bricks hold refine^3 texels where
-// bricks on the cell's corners need (refine + 1)^3 (2.4x more at refine 3):
-// on the engine CT, centred refine 3 reads closer to the tables than corner
-// bricks of refine 3 (docs/filtered-sat.md, "Memory").
+// faces (so n >= 2). Texel-centred bricks hold n^3 texels where bricks on
+// the cell's corners need (n + 1)^3 (2.4x more at n = 3): on the engine CT,
+// centred n = 3 reads closer to the tables than corner bricks of 3
+// (docs/filtered-sat.md, "Memory").
 //
 // Texels hold the optical depth tau (visibility = exp(-tau)) in 16-bit fixed
 // point over [0, kMaxDepth] (step 2.4e-4, a relative visibility error below
@@ -21,9 +28,10 @@
 // surfaces hold: inside a material the depth grows about linearly with the
 // distance from its surface while the visibility falls exponentially.
 //
-// Storage is sparse: the cells are grouped in blocks of 4^3; each block keeps
-// a 64-bit mask of the cells that have a brick and the index of its first
-// brick, so a cell's brick is block_first + popcount(mask below its bit).
+// Storage is sparse, per resolution: the cells are grouped in blocks of
+// 4^3; each block keeps a 64-bit mask of the cells that have a brick of
+// that resolution and the index of its first one, so a cell's brick is
+// block_first + popcount(mask below its bit).
 #include "penumbra/base/math.h"
 #include "penumbra/base/memory_budget.h"
 #include "penumbra/base/parallel.h"
@@ -47,103 +55,114 @@ PENUMBRA_HD inline int popcount64(std::uint64_t bits) {
 #endif
 }
 
-struct RefinedCellsView {
+// The optical depth read in a brick of n^3 texels (16-bit, x fastest) at
+// `f`, the point's coordinates in its cell ([0, 1]^3): trilinear between
+// the texels (sub-cell centres), extrapolated linearly over the half
+// sub-cells between the outer texels and the cell's faces.
+PENUMBRA_HD inline float brick_depth(const std::uint16_t* t, int n, vec3 f) {
   static constexpr float kMaxDepth = 16.0f;
-  ivec3 cells{0};   // cache cells per axis (cache dims - 1)
-  ivec3 blocks{0};  // blocks of 4^3 cells per axis
-  int refine = 0;   // brick texels per cell edge (>= 2); 0: no bricks
+  const vec3 s = f * float(n) - 0.5f;
+  const ivec3 base = glm::clamp(ivec3(glm::floor(s)), ivec3(0), ivec3(n - 2));
+  const int sy = n, sz = n * n;
+  auto lerp = [](float a, float b, float w) { return a + w * (b - a); };
+  const vec3 w = s - vec3(base);
+  const std::uint16_t* p = t + base.x + sy * base.y + sz * base.z;
+  const float x00 = lerp(p[0], p[1], w.x), x10 = lerp(p[sy], p[sy + 1], w.x);
+  const float x01 = lerp(p[sz], p[sz + 1], w.x), x11 = lerp(p[sz + sy], p[sz + sy + 1], w.x);
+  return lerp(lerp(x00, x10, w.y), lerp(x01, x11, w.y), w.z) * (kMaxDepth / 65535.0f);
+}
+
+// One resolution of bricks: the cells of 4^3-cell blocks that have a brick
+// of refine^3 texels at this level.
+struct BrickLevelView {
+  int refine = 0;  // texels per cell edge (>= 2)
   std::uint32_t bricks = 0;
   const std::uint32_t* block_first = nullptr;  // per block
   const std::uint64_t* block_mask = nullptr;   // per block
   const std::uint16_t* texels = nullptr;       // bricks of refine^3 depth texels, x fastest
+};
+
+struct RefinedCellsView {
+  static constexpr float kMaxDepth = 16.0f;
+  static constexpr int kMaxLevels = 4;  // refine 2, 4, 6, 8 at the most
+  ivec3 cells{0};   // cache cells per axis (cache dims - 1)
+  ivec3 blocks{0};  // blocks of 4^3 cells per axis
+  int levels = 0;   // 0: no bricks
+  BrickLevelView level[kMaxLevels];  // coarsest first; a cell has a brick in one level at most
 
   // The brick's visibility at `world` into `value`: exp of the depth
   // interpolated in the brick; false where the cell holding `world`
   // (clamped to the cache, as its trilinear read) has no brick.
   PENUMBRA_HD bool sample(const VolumeView& cache, vec3 world, float& value) const {
-    if (refine <= 0) return false;
+    if (levels <= 0) return false;
     const vec3 g = glm::clamp((world - cache.origin) / cache.spacing, vec3(0.0f), vec3(cells));
     const ivec3 c = glm::min(ivec3(g), cells - 1);
     const ivec3 b = c >> 2;
     const int block = b.x + blocks.x * (b.y + blocks.y * b.z);
     const int bit = (c.x & 3) + 4 * (c.y & 3) + 16 * (c.z & 3);
-    const std::uint64_t mask = block_mask[block];
-    if (((mask >> bit) & 1u) == 0) return false;
-    const std::uint64_t below = mask & ((std::uint64_t(1) << bit) - 1u);
-    const int n = refine;
-    const std::uint16_t* t =
-        texels + (std::size_t(block_first[block]) + std::size_t(popcount64(below))) * std::size_t(n * n * n);
-    // Sub-cell coordinates with texel i at i; the outer half sub-cells
-    // extrapolate from the two outermost texels.
-    const vec3 s = (g - vec3(c)) * float(n) - 0.5f;
-    const ivec3 s0 = glm::clamp(ivec3(glm::floor(s)), ivec3(0), ivec3(n - 2));
-    const int sy = n, sz = n * n;
-    auto lerp = [](float a, float b, float w) { return a + w * (b - a); };
-    auto trilinear = [&](ivec3 base) {
-      const vec3 f = s - vec3(base);
-      const std::uint16_t* p = t + base.x + sy * base.y + sz * base.z;
-      const float x00 = lerp(p[0], p[1], f.x), x10 = lerp(p[sy], p[sy + 1], f.x);
-      const float x01 = lerp(p[sz], p[sz + 1], f.x), x11 = lerp(p[sz + sy], p[sz + sy + 1], f.x);
-      return lerp(lerp(x00, x10, f.y), lerp(x01, x11, f.y), f.z);
-    };
-    const float depth = trilinear(s0) * (kMaxDepth / 65535.0f);
-    value = exp_nonpositive(-glm::max(depth, 0.0f));
-    return true;
+    for (int l = 0; l < levels; ++l) {
+      const BrickLevelView& v = level[l];
+      if (v.bricks == 0) continue;
+      const std::uint64_t mask = v.block_mask[block];
+      if (((mask >> bit) & 1u) == 0) continue;
+      const std::uint64_t below = mask & ((std::uint64_t(1) << bit) - 1u);
+      const int n = v.refine;
+      const std::uint16_t* t =
+          v.texels + (std::size_t(v.block_first[block]) + std::size_t(popcount64(below))) * std::size_t(n * n * n);
+      value = exp_nonpositive(-glm::max(brick_depth(t, n, g - vec3(c)), 0.0f));
+      return true;
+    }
+    return false;
   }
 };
 
 class RefinedCells {
  public:
-  // Bricks of refine^3 texels (refine >= 2) for the cells of `cache` (a
-  // float visibility grid from build_visibility_cache) whose texels differ
-  // by more than `tolerance` and where the cache's trilinear read is off by
-  // more than `probe_tolerance` from the visibility exp(-depth(world)) at
-  // one of seven probes (the cell's centre and its faces' centres; a smooth
-  // ramp across a penumbra needs no brick), filled with depth(world), the
-  // optical depth toward the light. Throws OutOfMemoryBudget before
-  // allocating bricks that do not fit.
+  // Bricks (refine >= 2) for the cells of `cache` (a float visibility grid
+  // from build_visibility_cache) whose texels differ by more than
+  // `tolerance` and where the cache's trilinear read is off by more than
+  // `probe_tolerance` from the visibility exp(-depth(world)) at one of seven
+  // probes (the cell's centre and its faces' centres; a smooth ramp across
+  // a penumbra needs no brick), filled with depth(world), the optical depth
+  // toward the light. A brick's resolution follows its cell: the levels are
+  // refine, refine/2, refine/4 (while even and at least 2), and a cell keeps
+  // the coarsest brick whose read is within `probe_tolerance` of the
+  // visibility at its checks (the points halfway between its texels, and
+  // the faces' centres); the finest level takes the rest. Throws
+  // OutOfMemoryBudget before allocating what does not fit.
   // `depth` may also be a batch (sat_common/batch.h): the probes are
-  // evaluated as one batch, then the bricks' texels as another.
+  // evaluated as one batch, then each level's texels and checks as another.
   template <class Depth>
   void build(const Volume& cache, float tolerance, float probe_tolerance, int refine, const Depth& depth) {
     plan(cache, tolerance, refine);
     const VolumeView view = cache.view();
     const float* data = cache.frame_as<float>(0);
     const ivec3 dims = cache.dims();
-    const ivec3 blocks = view_.blocks;
-    const std::int64_t block_count = std::int64_t(blocks.x) * blocks.y * blocks.z;
-    auto cell_of = [&](std::int64_t block, int bit) {
-      const ivec3 b(int(block % blocks.x), int(block / blocks.x % blocks.y), int(block / blocks.x / blocks.y));
-      return b * 4 + ivec3(bit & 3, (bit >> 2) & 3, bit >> 4);
-    };
     // The candidates, in block and bit order.
-    std::vector<std::int64_t> candidates;  // block * 64 + bit
-    for (std::int64_t block = 0; block < block_count; ++block) {
-      for (std::uint64_t mask = masks_[std::size_t(block)]; mask != 0; mask &= mask - 1) {
-        candidates.push_back(block * 64 + __builtin_ctzll(mask));
+    std::vector<std::int64_t> cells;  // block * 64 + bit
+    for (std::size_t block = 0; block < masks_[0].size(); ++block) {
+      for (std::uint64_t mask = masks_[0][block]; mask != 0; mask &= mask - 1) {
+        cells.push_back(std::int64_t(block) * 64 + __builtin_ctzll(mask));
       }
     }
     static constexpr float kProbes[7][3] = {{0.5f, 0.5f, 0.5f}, {0.0f, 0.5f, 0.5f}, {1.0f, 0.5f, 0.5f},
                                             {0.5f, 0.0f, 0.5f}, {0.5f, 1.0f, 0.5f}, {0.5f, 0.5f, 0.0f},
                                             {0.5f, 0.5f, 1.0f}};
-    // The probes' depths, then the bricks' texels in float, live only here.
+    // The probes' depths live only here.
     check_memory_budget("the shadow cache's refined cells: their probes",
-                        checked_product({std::uint64_t(candidates.size()), 7 * sizeof(float) + 1}));
-    std::vector<float> probe_depth(candidates.size() * 7);
+                        checked_product({std::uint64_t(cells.size()), 7 * sizeof(float) + 1}));
+    std::vector<float> probe_depth(cells.size() * 7);
     evaluate_batch(
         depth, std::int64_t(probe_depth.size()),
         [&](std::int64_t t) {
-          const std::int64_t c = candidates[std::size_t(t / 7)];
-          const float* f = kProbes[t % 7];
-          return view.world_from_index(vec3(cell_of(c / 64, int(c % 64))) + vec3(f[0], f[1], f[2]));
+          return view.world_from_index(vec3(cell_of(cells[std::size_t(t / 7)])) + vec3(from_array(kProbes[t % 7])));
         },
         probe_depth.data());
-    // Keep the candidates whose trilinear read misses a probe (decided in
-    // parallel, then set in the masks).
-    std::vector<std::uint8_t> keep(candidates.size(), 0);
-    parallel_for(0, std::int64_t(candidates.size()), [&](std::int64_t first, std::int64_t last) {
+    // Keep the candidates whose trilinear read misses a probe.
+    std::vector<std::uint8_t> keep(cells.size(), 0);
+    parallel_for(0, std::int64_t(cells.size()), [&](std::int64_t first, std::int64_t last) {
       for (std::int64_t n = first; n < last; ++n) {
-        const ivec3 c = cell_of(candidates[std::size_t(n)] / 64, int(candidates[std::size_t(n)] % 64));
+        const ivec3 c = cell_of(cells[std::size_t(n)]);
         float corner[8];
         for (int k = 0; k < 8; ++k) {
           const ivec3 q = glm::min(c + ivec3(k & 1, (k >> 1) & 1, (k >> 2) & 1), dims - 1);
@@ -157,67 +176,101 @@ class RefinedCells {
                     (k & 4 ? f[2] : 1.0f - f[2]);
           }
           const float truth = exp_nonpositive(-probe_depth[std::size_t(n) * 7 + std::size_t(probe)]);
-          if (std::abs(truth - read) > probe_tolerance) {
+          if (perceptual_miss(read, truth, probe_tolerance)) {
             keep[std::size_t(n)] = 1;
             break;
           }
         }
       }
     });
-    std::fill(masks_.begin(), masks_.end(), std::uint64_t(0));
-    for (std::size_t n = 0; n < candidates.size(); ++n) {
-      if (keep[n]) masks_[std::size_t(candidates[n] / 64)] |= std::uint64_t(1) << (candidates[n] % 64);
-    }
     std::vector<float>().swap(probe_depth);
-    allocate(refine);
-    // The bricks' cells, in brick order (block, then bit).
-    std::vector<ivec3> brick_cells;
-    brick_cells.reserve(brick_count_);
-    for (std::int64_t block = 0; block < block_count; ++block) {
-      for (std::uint64_t mask = masks_[std::size_t(block)]; mask != 0; mask &= mask - 1) {
-        brick_cells.push_back(cell_of(block, __builtin_ctzll(mask)));
-      }
+    cells = kept(cells, keep);
+    // Level by level, coarsest first: the texels and checks of the cells
+    // still without a brick as one batch; the cells whose brick reads the
+    // checks well keep it, the others go on to the next level.
+    for (int l = 0; l < view_.levels; ++l) {
+      const int n = view_.level[l].refine;
+      const bool finest = l + 1 == view_.levels;
+      const std::vector<vec3> checks = finest ? std::vector<vec3>() : check_points(n);
+      const std::int64_t per_brick = std::int64_t(n) * n * n;
+      const std::int64_t per_cell = per_brick + std::int64_t(checks.size());
+      check_memory_budget("the shadow cache's refined cells: their texels' depths",
+                          checked_product({std::uint64_t(cells.size()), std::uint64_t(per_cell), sizeof(float) + 2}));
+      std::vector<float> tau(cells.size() * std::size_t(per_cell));
+      evaluate_batch(
+          depth, std::int64_t(tau.size()),
+          [&](std::int64_t t) {
+            const std::int64_t i = t % per_cell;
+            const vec3 f = i < per_brick
+                               ? (vec3(float(i % n), float(i / n % n), float(i / (n * n))) + 0.5f) / float(n)
+                               : checks[std::size_t(i - per_brick)];
+            return view.world_from_index(vec3(cell_of(cells[std::size_t(t / per_cell)])) + f);
+          },
+          tau.data());
+      std::vector<std::uint16_t> texels(cells.size() * std::size_t(per_brick));
+      keep.assign(cells.size(), 0);
+      parallel_for(0, std::int64_t(cells.size()), [&](std::int64_t first, std::int64_t last) {
+        for (std::int64_t c = first; c < last; ++c) {
+          const float* in = tau.data() + c * per_cell;
+          std::uint16_t* out = texels.data() + c * per_brick;
+          for (std::int64_t i = 0; i < per_brick; ++i) {
+            const float clamped = glm::clamp(in[i], 0.0f, RefinedCellsView::kMaxDepth);
+            out[i] = std::uint16_t(clamped * (65535.0f / RefinedCellsView::kMaxDepth) + 0.5f);
+          }
+          bool good = true;
+          for (std::size_t k = 0; k < checks.size() && good; ++k) {
+            const float read = exp_nonpositive(-glm::max(brick_depth(out, n, checks[k]), 0.0f));
+            const float truth = exp_nonpositive(-glm::max(in[per_brick + std::int64_t(k)], 0.0f));
+            good = !perceptual_miss(read, truth, probe_tolerance);
+          }
+          keep[std::size_t(c)] = good ? 1 : 0;
+        }
+      });
+      store(l, cells, keep, texels);
+      cells = kept(cells, keep, /*inverse=*/true);
     }
-    const int n = refine;
-    const std::int64_t per_brick = std::int64_t(n) * n * n;
-    check_memory_budget("the shadow cache's refined cells: their texels' depths",
-                        checked_product({std::uint64_t(brick_cells.size()), std::uint64_t(per_brick), sizeof(float)}));
-    std::vector<float> tau(brick_cells.size() * std::size_t(per_brick));
-    evaluate_batch(
-        depth, std::int64_t(tau.size()),
-        [&](std::int64_t t) {
-          const std::int64_t texel = t % per_brick;
-          const vec3 sub(float(texel % n), float(texel / n % n), float(texel / (n * n)));
-          return view.world_from_index(vec3(brick_cells[std::size_t(t / per_brick)]) + (sub + 0.5f) / float(n));
-        },
-        tau.data());
-    parallel_for(0, std::int64_t(tau.size()), [&](std::int64_t first, std::int64_t last) {
-      for (std::int64_t t = first; t < last; ++t) {
-        const float clamped = glm::clamp(tau[std::size_t(t)], 0.0f, RefinedCellsView::kMaxDepth);
-        texels_[std::size_t(t)] = std::uint16_t(clamped * (65535.0f / RefinedCellsView::kMaxDepth) + 0.5f);
-      }
-    });
-    view_.block_first = first_.data();
-    view_.block_mask = masks_.data();
-    view_.texels = texels_.data();
   }
 
   void clear();
   const RefinedCellsView& view() const { return view_; }
-  std::size_t brick_count() const { return brick_count_; }
+  std::size_t brick_count() const;
+  std::size_t brick_count(int level) const { return level < view_.levels ? view_.level[level].bricks : 0; }
   std::uint64_t bytes() const;
 
  private:
-  // The masks of the cells whose texels differ by more than `tolerance`.
+  // Whether `read` misses the visibility `truth` by more than `tolerance`
+  // on the cube root of the visibility (lightness L* = 116 Y^(1/3) - 16, so
+  // that a miss costs about as much lightness in a shadow as in the light).
+  static bool perceptual_miss(float read, float truth, float tolerance) {
+    return std::abs(std::cbrt(glm::max(read, 0.0f)) - std::cbrt(glm::max(truth, 0.0f))) > tolerance;
+  }
+  static vec3 from_array(const float* f) { return vec3(f[0], f[1], f[2]); }
+  ivec3 cell_of(std::int64_t cell) const {
+    const std::int64_t block = cell / 64;
+    const int bit = int(cell % 64);
+    const ivec3 blocks = view_.blocks;
+    const ivec3 b(int(block % blocks.x), int(block / blocks.x % blocks.y), int(block / blocks.x / blocks.y));
+    return b * 4 + ivec3(bit & 3, (bit >> 2) & 3, bit >> 4);
+  }
+  // The cells whose keep flag is set (or, inverse, unset), in order.
+  static std::vector<std::int64_t> kept(const std::vector<std::int64_t>& cells, const std::vector<std::uint8_t>& keep,
+                                        bool inverse = false);
+  // Where a brick of n^3 texels is checked before a finer one replaces it:
+  // halfway between its texels (the lattice k / n, 0 < k < n) and the
+  // centres of the cell's faces (where it extrapolates).
+  static std::vector<vec3> check_points(int n);
+  // The masks of the cells whose texels differ by more than `tolerance`
+  // (in masks_[0], the candidates), and the levels of `refine`.
   void plan(const Volume& cache, float tolerance, int refine);
-  // The first brick of each block, and the bricks, for the masks.
-  void allocate(int refine);
+  // Level l's bricks: those of `cells` whose keep flag is set, with their
+  // texels (per_brick each, in the order of `cells`).
+  void store(int l, const std::vector<std::int64_t>& cells, const std::vector<std::uint8_t>& keep,
+             const std::vector<std::uint16_t>& texels);
 
   RefinedCellsView view_;
-  std::vector<std::uint32_t> first_;
-  std::vector<std::uint64_t> masks_;
-  std::vector<std::uint16_t> texels_;
-  std::size_t brick_count_ = 0;
+  std::vector<std::uint32_t> first_[RefinedCellsView::kMaxLevels];
+  std::vector<std::uint64_t> masks_[RefinedCellsView::kMaxLevels];
+  std::vector<std::uint16_t> texels_[RefinedCellsView::kMaxLevels];
 };
 
 }  // namespace penumbra
