@@ -82,7 +82,7 @@
 //            (sat_common/refined_cells.h: n^3 16-bit optical depths, n from
 //            2 to cache_refinement as the cell needs, for the cells whose
 //            trilinear read misses the cube root of the visibility by more
-//            than 0.013 at a probe) and a grid on each opaque plane
+//            than 0.014 at a probe) and a grid on each opaque plane
 //            (sat_common/plane_caches.h over the box grown by the patch's
 //            reach, nodes a fifth of the filter apart within 0.25-1 voxel).
 //            Tables are float residuals against double block corners

@@ -145,57 +145,21 @@ class RefinedCells {
         cells.push_back(std::int64_t(block) * 64 + __builtin_ctzll(mask));
       }
     }
-    static constexpr float kProbes[7][3] = {{0.5f, 0.5f, 0.5f}, {0.0f, 0.5f, 0.5f}, {1.0f, 0.5f, 0.5f},
-                                            {0.5f, 0.0f, 0.5f}, {0.5f, 1.0f, 0.5f}, {0.5f, 0.5f, 0.0f},
-                                            {0.5f, 0.5f, 1.0f}};
-    // The probes' depths live only here.
-    check_memory_budget("the shadow cache's refined cells: their probes",
-                        checked_product({std::uint64_t(cells.size()), 7 * sizeof(float) + 1}));
-    std::vector<float> probe_depth(cells.size() * 7);
-    evaluate_batch(
-        depth, std::int64_t(probe_depth.size()),
-        [&](std::int64_t t) {
-          return view.world_from_index(vec3(cell_of(cells[std::size_t(t / 7)])) + vec3(from_array(kProbes[t % 7])));
-        },
-        probe_depth.data());
-    // Keep the candidates whose trilinear read misses a probe.
-    std::vector<std::uint8_t> keep(cells.size(), 0);
-    parallel_for(0, std::int64_t(cells.size()), [&](std::int64_t first, std::int64_t last) {
-      for (std::int64_t n = first; n < last; ++n) {
-        const ivec3 c = cell_of(cells[std::size_t(n)]);
-        float corner[8];
-        for (int k = 0; k < 8; ++k) {
-          const ivec3 q = glm::min(c + ivec3(k & 1, (k >> 1) & 1, (k >> 2) & 1), dims - 1);
-          corner[k] = data[std::size_t(q.x) + std::size_t(dims.x) * (std::size_t(q.y) + std::size_t(dims.y) * q.z)];
-        }
-        for (int probe = 0; probe < 7; ++probe) {
-          const float* f = kProbes[probe];
-          float read = 0.0f;
-          for (int k = 0; k < 8; ++k) {
-            read += corner[k] * (k & 1 ? f[0] : 1.0f - f[0]) * (k & 2 ? f[1] : 1.0f - f[1]) *
-                    (k & 4 ? f[2] : 1.0f - f[2]);
-          }
-          const float truth = exp_nonpositive(-probe_depth[std::size_t(n) * 7 + std::size_t(probe)]);
-          if (perceptual_miss(read, truth, probe_tolerance)) {
-            keep[std::size_t(n)] = 1;
-            break;
-          }
-        }
-      }
-    });
-    std::vector<float>().swap(probe_depth);
-    cells = kept(cells, keep);
     // Level by level, coarsest first: the texels and checks of the cells
     // still without a brick as one batch; the cells whose brick reads the
-    // checks well keep it, the others go on to the next level.
+    // checks well keep it, the others go on to the next level. The first
+    // level (2^3) is built for every candidate: its checks are the probes
+    // (the centre and the faces' centres), where a candidate whose cache
+    // cell reads them well needs no brick at all.
+    std::vector<std::uint8_t> keep;
     for (int l = 0; l < view_.levels; ++l) {
       const int n = view_.level[l].refine;
       const bool finest = l + 1 == view_.levels;
-      const std::vector<vec3> checks = finest ? std::vector<vec3>() : check_points(n);
+      const std::vector<vec3> checks = finest && l > 0 ? std::vector<vec3>() : check_points(l == 0 ? 2 : n);
       const std::int64_t per_brick = std::int64_t(n) * n * n;
       const std::int64_t per_cell = per_brick + std::int64_t(checks.size());
       check_memory_budget("the shadow cache's refined cells: their texels' depths",
-                          checked_product({std::uint64_t(cells.size()), std::uint64_t(per_cell), sizeof(float) + 2}));
+                          checked_product({std::uint64_t(cells.size()), std::uint64_t(per_cell), sizeof(float) + 3}));
       std::vector<float> tau(cells.size() * std::size_t(per_cell));
       evaluate_batch(
           depth, std::int64_t(tau.size()),
@@ -209,24 +173,39 @@ class RefinedCells {
           tau.data());
       std::vector<std::uint16_t> texels(cells.size() * std::size_t(per_brick));
       keep.assign(cells.size(), 0);
+      std::vector<std::uint8_t> needed(cells.size(), 1);
       parallel_for(0, std::int64_t(cells.size()), [&](std::int64_t first, std::int64_t last) {
         for (std::int64_t c = first; c < last; ++c) {
           const float* in = tau.data() + c * per_cell;
+          auto truth = [&](std::size_t k) {
+            return exp_nonpositive(-glm::max(in[per_brick + std::int64_t(k)], 0.0f));
+          };
+          if (l == 0) {  // does the cache cell miss a probe?
+            bool missed = false;
+            for (std::size_t k = 0; k < checks.size() && !missed; ++k) {
+              missed = perceptual_miss(cache_read(data, dims, cell_of(cells[std::size_t(c)]), checks[k]), truth(k),
+                                       probe_tolerance);
+            }
+            needed[std::size_t(c)] = missed ? 1 : 0;
+            if (!missed) continue;
+          }
           std::uint16_t* out = texels.data() + c * per_brick;
           for (std::int64_t i = 0; i < per_brick; ++i) {
             const float clamped = glm::clamp(in[i], 0.0f, RefinedCellsView::kMaxDepth);
             out[i] = std::uint16_t(clamped * (65535.0f / RefinedCellsView::kMaxDepth) + 0.5f);
           }
           bool good = true;
-          for (std::size_t k = 0; k < checks.size() && good; ++k) {
+          for (std::size_t k = 0; k < checks.size() && good && !finest; ++k) {
             const float read = exp_nonpositive(-glm::max(brick_depth(out, n, checks[k]), 0.0f));
-            const float truth = exp_nonpositive(-glm::max(in[per_brick + std::int64_t(k)], 0.0f));
-            good = !perceptual_miss(read, truth, probe_tolerance);
+            good = !perceptual_miss(read, truth(k), probe_tolerance);
           }
           keep[std::size_t(c)] = good ? 1 : 0;
         }
       });
+      std::vector<float>().swap(tau);
       store(l, cells, keep, texels);
+      // On: the cells that need a brick and did not keep this one.
+      for (std::size_t c = 0; c < cells.size(); ++c) keep[c] = needed[c] && !keep[c] ? 0 : 1;
       cells = kept(cells, keep, /*inverse=*/true);
     }
   }
@@ -244,7 +223,16 @@ class RefinedCells {
   static bool perceptual_miss(float read, float truth, float tolerance) {
     return std::abs(std::cbrt(glm::max(read, 0.0f)) - std::cbrt(glm::max(truth, 0.0f))) > tolerance;
   }
-  static vec3 from_array(const float* f) { return vec3(f[0], f[1], f[2]); }
+  // The cache's trilinear read at f in cell c.
+  static float cache_read(const float* data, ivec3 dims, ivec3 c, vec3 f) {
+    float read = 0.0f;
+    for (int k = 0; k < 8; ++k) {
+      const ivec3 q = glm::min(c + ivec3(k & 1, (k >> 1) & 1, (k >> 2) & 1), dims - 1);
+      read += data[std::size_t(q.x) + std::size_t(dims.x) * (std::size_t(q.y) + std::size_t(dims.y) * q.z)] *
+              (k & 1 ? f.x : 1.0f - f.x) * (k & 2 ? f.y : 1.0f - f.y) * (k & 4 ? f.z : 1.0f - f.z);
+    }
+    return read;
+  }
   ivec3 cell_of(std::int64_t cell) const {
     const std::int64_t block = cell / 64;
     const int bit = int(cell % 64);
