@@ -247,7 +247,9 @@ TEST_F(ServerFrames, ALightSizeUpdateChangesTheSceneLightAndTheFrame) {
     const auto soft = frame(id, frame_body(24, 24, "png", {{"scene", scene}}));
     ASSERT_TRUE(hard && soft);
     ASSERT_EQ(soft->status, 200) << soft->body;
-    if (name == "pathtrace") EXPECT_EQ(soft->get_header_value("X-Spp"), "4");  // started again
+    if (name == "pathtrace") {
+      EXPECT_EQ(soft->get_header_value("X-Spp"), "4");  // started again
+    }
     const Image a = decode_png(std::span(reinterpret_cast<const std::uint8_t*>(hard->body.data()), hard->body.size()));
     const Image b = decode_png(std::span(reinterpret_cast<const std::uint8_t*>(soft->body.data()), soft->body.size()));
     EXPECT_GT(max_abs_error(a, b), 0.02) << "the light's size changes the frame";

@@ -51,7 +51,8 @@ struct RenderStats {
 // as packets on the active target, and returns that target; Scalar (nothing
 // rendered) when the caller must render one ray at a time.
 template <class Lighting>
-SimdTarget render_image_packets(const RenderView& v, const Lighting& lighting, Image& image, RayStats& stats) {
+SimdTarget render_image_packets([[maybe_unused]] const RenderView& v, [[maybe_unused]] const Lighting& lighting,
+                                [[maybe_unused]] Image& image, [[maybe_unused]] RayStats& stats) {
   if constexpr (PacketLighting<Lighting>::value) {
     const SimdTarget target = packet_target(v);
     switch (target) {

@@ -117,8 +117,9 @@ TEST(ShadowRaysArea, PacketPathMatchesScalarPath) {
   const Image scalar = render_with(scene, "shadow-rays", {{"light_samples", 8.0}});
   set_simd_mode(packets);
   RenderStats stats;
-  const Image packet = render_with(scene, "shadow-rays", {{"light_samples", 8.0}});
+  const Image packet = render_with(scene, "shadow-rays", {{"light_samples", 8.0}}, &stats);
   set_simd_mode(saved);
+  EXPECT_NE(stats.simd, SimdTarget::Scalar) << "the packet path ran";
   EXPECT_LE(rmse(packet, scalar), 1e-4);
   // And the samples soften: the image differs from the centre-ray one.
   EXPECT_GT(rmse(scalar, render_with(scene, "shadow-rays")), 1e-3);
