@@ -46,15 +46,6 @@ void RefinedCells::plan(const Volume& cache, float tolerance, int refine) {
   view_.levels = count;
 }
 
-std::vector<std::int64_t> RefinedCells::kept(const std::vector<std::int64_t>& cells,
-                                             const std::vector<std::uint8_t>& keep, bool inverse) {
-  std::vector<std::int64_t> out;
-  for (std::size_t i = 0; i < cells.size(); ++i) {
-    if ((keep[i] != 0) != inverse) out.push_back(cells[i]);
-  }
-  return out;
-}
-
 std::vector<vec3> RefinedCells::check_points(int n) {
   std::vector<vec3> points;
   for (int z = 1; z < n; ++z)

@@ -55,12 +55,14 @@ PENUMBRA_HD inline int popcount64(std::uint64_t bits) {
 #endif
 }
 
+// Brick texels hold the optical depth in 16-bit fixed point over [0, this].
+inline constexpr float kBrickMaxDepth = 16.0f;
+
 // The optical depth read in a brick of n^3 texels (16-bit, x fastest) at
 // `f`, the point's coordinates in its cell ([0, 1]^3): trilinear between
 // the texels (sub-cell centres), extrapolated linearly over the half
 // sub-cells between the outer texels and the cell's faces.
 PENUMBRA_HD inline float brick_depth(const std::uint16_t* t, int n, vec3 f) {
-  static constexpr float kMaxDepth = 16.0f;
   const vec3 s = f * float(n) - 0.5f;
   const ivec3 base = glm::clamp(ivec3(glm::floor(s)), ivec3(0), ivec3(n - 2));
   const int sy = n, sz = n * n;
@@ -69,7 +71,7 @@ PENUMBRA_HD inline float brick_depth(const std::uint16_t* t, int n, vec3 f) {
   const std::uint16_t* p = t + base.x + sy * base.y + sz * base.z;
   const float x00 = lerp(p[0], p[1], w.x), x10 = lerp(p[sy], p[sy + 1], w.x);
   const float x01 = lerp(p[sz], p[sz + 1], w.x), x11 = lerp(p[sz + sy], p[sz + sy + 1], w.x);
-  return lerp(lerp(x00, x10, w.y), lerp(x01, x11, w.y), w.z) * (kMaxDepth / 65535.0f);
+  return lerp(lerp(x00, x10, w.y), lerp(x01, x11, w.y), w.z) * (kBrickMaxDepth / 65535.0f);
 }
 
 // One resolution of bricks: the cells of 4^3-cell blocks that have a brick
@@ -83,7 +85,7 @@ struct BrickLevelView {
 };
 
 struct RefinedCellsView {
-  static constexpr float kMaxDepth = 16.0f;
+  static constexpr float kMaxDepth = kBrickMaxDepth;
   static constexpr int kMaxLevels = 4;  // refine 2, 4, 6, 8 at the most
   ivec3 cells{0};   // cache cells per axis (cache dims - 1)
   ivec3 blocks{0};  // blocks of 4^3 cells per axis
@@ -120,24 +122,25 @@ class RefinedCells {
  public:
   // Bricks (refine >= 2) for the cells of `cache` (a float visibility grid
   // from build_visibility_cache) whose texels differ by more than
-  // `tolerance` and where the cache's trilinear read is off by more than
-  // `probe_tolerance` from the visibility exp(-depth(world)) at one of seven
-  // probes (the cell's centre and its faces' centres; a smooth ramp across
-  // a penumbra needs no brick), filled with depth(world), the optical depth
-  // toward the light. A brick's resolution follows its cell: the levels are
-  // refine, refine/2, refine/4 (while even and at least 2), and a cell keeps
-  // the coarsest brick whose read is within `probe_tolerance` of the
-  // visibility at its checks (the points halfway between its texels, and
-  // the faces' centres); the finest level takes the rest. Throws
-  // OutOfMemoryBudget before allocating what does not fit.
-  // `depth` may also be a batch (sat_common/batch.h): the probes are
-  // evaluated as one batch, then each level's texels and checks as another.
+  // `tolerance` and where the cache's trilinear read misses the visibility
+  // exp(-depth(world)) at one of seven probes (the cell's centre and its
+  // faces' centres; a smooth ramp across a penumbra needs no brick), filled
+  // with depth(world), the optical depth toward the light. Misses are
+  // measured on the cube root of the visibility against `probe_tolerance`.
+  // A brick's resolution follows its cell: the levels are 2, 4, ... up to
+  // refine (and refine itself where it is odd), and a cell keeps the
+  // coarsest brick that does not miss at its checks (the points halfway
+  // between its texels, and the faces' centres); the finest level takes the
+  // rest. Throws OutOfMemoryBudget before allocating what does not fit.
+  // `depth` may also be a batch (sat_common/batch.h): the probes and the
+  // 2^3 bricks are evaluated as one batch, then each finer level's texels
+  // and checks as another.
   template <class Depth>
   void build(const Volume& cache, float tolerance, float probe_tolerance, int refine, const Depth& depth) {
     plan(cache, tolerance, refine);
     const VolumeView view = cache.view();
     const float* data = cache.frame_as<float>(0);
-    const ivec3 dims = cache.dims();
+    const VoxelGrid grid(cache.dims());
     // The candidates, in block and bit order.
     std::vector<std::int64_t> cells;  // block * 64 + bit
     for (std::size_t block = 0; block < masks_[0].size(); ++block) {
@@ -183,8 +186,8 @@ class RefinedCells {
           if (l == 0) {  // does the cache cell miss a probe?
             bool missed = false;
             for (std::size_t k = 0; k < checks.size() && !missed; ++k) {
-              missed = perceptual_miss(cache_read(data, dims, cell_of(cells[std::size_t(c)]), checks[k]), truth(k),
-                                       probe_tolerance);
+              const vec3 at = vec3(cell_of(cells[std::size_t(c)])) + checks[k];
+              missed = perceptual_miss(trilinear<ScalarLanes>(grid, data, at), truth(k), probe_tolerance);
             }
             needed[std::size_t(c)] = missed ? 1 : 0;
             if (!missed) continue;
@@ -205,8 +208,11 @@ class RefinedCells {
       std::vector<float>().swap(tau);
       store(l, cells, keep, texels);
       // On: the cells that need a brick and did not keep this one.
-      for (std::size_t c = 0; c < cells.size(); ++c) keep[c] = needed[c] && !keep[c] ? 0 : 1;
-      cells = kept(cells, keep, /*inverse=*/true);
+      std::vector<std::int64_t> next;
+      for (std::size_t c = 0; c < cells.size(); ++c) {
+        if (needed[c] && !keep[c]) next.push_back(cells[c]);
+      }
+      cells.swap(next);
     }
   }
 
@@ -223,16 +229,6 @@ class RefinedCells {
   static bool perceptual_miss(float read, float truth, float tolerance) {
     return std::abs(std::cbrt(glm::max(read, 0.0f)) - std::cbrt(glm::max(truth, 0.0f))) > tolerance;
   }
-  // The cache's trilinear read at f in cell c.
-  static float cache_read(const float* data, ivec3 dims, ivec3 c, vec3 f) {
-    float read = 0.0f;
-    for (int k = 0; k < 8; ++k) {
-      const ivec3 q = glm::min(c + ivec3(k & 1, (k >> 1) & 1, (k >> 2) & 1), dims - 1);
-      read += data[std::size_t(q.x) + std::size_t(dims.x) * (std::size_t(q.y) + std::size_t(dims.y) * q.z)] *
-              (k & 1 ? f.x : 1.0f - f.x) * (k & 2 ? f.y : 1.0f - f.y) * (k & 4 ? f.z : 1.0f - f.z);
-    }
-    return read;
-  }
   ivec3 cell_of(std::int64_t cell) const {
     const std::int64_t block = cell / 64;
     const int bit = int(cell % 64);
@@ -240,9 +236,6 @@ class RefinedCells {
     const ivec3 b(int(block % blocks.x), int(block / blocks.x % blocks.y), int(block / blocks.x / blocks.y));
     return b * 4 + ivec3(bit & 3, (bit >> 2) & 3, bit >> 4);
   }
-  // The cells whose keep flag is set (or, inverse, unset), in order.
-  static std::vector<std::int64_t> kept(const std::vector<std::int64_t>& cells, const std::vector<std::uint8_t>& keep,
-                                        bool inverse = false);
   // Where a brick of n^3 texels is checked before a finer one replaces it:
   // halfway between its texels (the lattice k / n, 0 < k < n) and the
   // centres of the cell's faces (where it extrapolates).
