@@ -25,11 +25,13 @@ constexpr double kMinFilterVoxels = 0.25, kMaxFilterVoxels = 256.0;  // filter_v
 // Refined cells: a rough cache cell gets a brick where its trilinear read
 // misses the cube root of the visibility by more than this at a probe, and
 // the coarsest brick whose read misses it by no more halfway between its
-// texels (a lightness step of about 116 x 0.014 cbrt(Y) L*). Plane grids: nodes a
-// fifth of the light's filter width apart, between a quarter of a voxel and
-// a voxel (a penumbra on the floor is at most the filter wide). Chosen by
-// measurement (docs/filtered-sat.md, "Memory" and "Adaptive bricks").
-constexpr float kProbeTolerance = 0.014f;
+// texels (a lightness step of about 116 x 0.007 cbrt(Y) = 0.8 cbrt(Y) L*,
+// Y the lit luminance: under 1 L* wherever a cache cell covers many pixels,
+// zoomed in). Plane grids: nodes a fifth of the light's filter width apart,
+// between a quarter of a voxel and a voxel (a penumbra on the floor is at
+// most the filter wide). Chosen by measurement (docs/filtered-sat.md,
+// "Memory", "Adaptive bricks" and "Zoomed in").
+constexpr float kProbeTolerance = 0.007f;
 // table_streaming=auto streams a light's table when it would take more than
 // this (docs/filtered-sat.md, "Streamed tables").
 constexpr std::uint64_t kStreamTablesAbove = std::uint64_t(512) << 20;
@@ -117,6 +119,7 @@ class FilteredSat final : public Technique {
     refined_.resize(lights);
     plane_caches_.resize(lights);
     cache_builds_.resize(lights, 0);
+    caches_.set_unorm16(true);  // read by CachedFilteredVisibility in 16-bit
     rebuilds_ += std::uint64_t(caches_.update(
         lights, scene.volume().world_box(),
         visibility_cache_dims(scene.volume().dims(), float(params.number("cache_resolution"))), cache_params,
@@ -351,7 +354,7 @@ TechniqueInfo filtered_sat_info() {
                               "store each light's transmittance on a grid instead of reading the tables per sample"),
           ParameterSpec::real("cache_resolution", 0.5, 0.05, 2.0,
                               "shadow cache grid size as a fraction of the data grid"),
-          ParameterSpec::real("cache_tolerance", 0.02, 0.0, 1.0,
+          ParameterSpec::real("cache_tolerance", 0.01, 0.0, 1.0,
                               "cache cells whose texels differ by more than this read their brick, a finer grid "
                               "built with the cache (0 = the tables per sample, 1 = the cache everywhere); each "
                               "light's table is released once its cache, bricks and floor grids are filled"),

@@ -74,15 +74,15 @@
 //            data (or time step), the shadow TF's extinction, the clip
 //            planes, sat_resolution, or its own light's direction or
 //            position (never for a colour, an intensity or a render-only TF
-//            edit); then, with the cache, one transmittance grid per light,
+//            edit); then, with the cache, one 16-bit transmittance grid per light,
 //            rebuilt when its table is, or when the filter, kernel, offset,
 //            density scale or cache settings change (a light's size changes
 //            only its own derived filter and cache). With each light's
 //            cache, while its table lives: bricks of its rough cells
-//            (sat_common/refined_cells.h: n^3 16-bit optical depths, n from
-//            2 to cache_refinement as the cell needs, for the cells whose
-//            trilinear read misses the cube root of the visibility by more
-//            than 0.014 at a probe) and a grid on each opaque plane
+//            (sat_common/refined_cells.h: n^3 8-bit codes of the optical
+//            depth, n from 2 to cache_refinement as the cell needs, for the
+//            cells whose trilinear read misses the cube root of the
+//            visibility by more than 0.007 at a probe) and a grid on each opaque plane
 //            (sat_common/plane_caches.h over the box grown by the patch's
 //            reach, nodes a fifth of the filter apart within 0.25-1 voxel).
 //            Tables are float residuals against double block corners

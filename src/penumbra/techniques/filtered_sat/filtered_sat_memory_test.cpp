@@ -25,10 +25,10 @@ using testing::render_with;
 // is on and its rough cells have bricks (the defaults) or the cache is read
 // everywhere (cache_tolerance 1), and every light has a grid on every floor:
 // each table then lives only while its light's cache, bricks and floor grids
-// are filled. What stays with cache_tolerance 1 is one float cache per light,
-// cache_resolution^3 * 4 bytes per voxel per light (0.5 bytes at the default
-// 0.5), 16 MiB for a 256^3 volume with a directional and a point light (the
-// issue's target: 32 MiB); the defaults add the bricks. The image is that of
+// are filled. What stays with cache_tolerance 1 is one 16-bit cache per
+// light, cache_resolution^3 * 2 bytes per voxel per light (0.25 bytes at the
+// default 0.5), 8 MiB for a 256^3 volume with a directional and a point light
+// (the target: 32 MiB); the defaults add the bricks. The image is that of
 // kept tables at the same settings; a light that moves gets its table rebuilt
 // (and only its cache), a colour change rebuilds nothing; a floor keeps the
 // tables released (its grids are filled with the caches); refinement 0
@@ -42,7 +42,7 @@ TEST(FilteredSat, TablesAreReleasedOnceTheCachesAreFilled) {
   t->prepare(scene, released);
   EXPECT_EQ(t->rebuilds(), 4u);  // two tables, two caches
   const ivec3 dims = visibility_cache_dims(scene.volume().dims(), 0.5f);
-  const std::uint64_t cache_bytes = std::uint64_t(dims.x) * dims.y * dims.z * sizeof(float);
+  const std::uint64_t cache_bytes = std::uint64_t(dims.x) * dims.y * dims.z * sizeof(std::uint16_t);
   EXPECT_EQ(t->aux_bytes(), 2 * cache_bytes);
   const ivec3 data = scene.volume().dims();
   const double per_voxel_per_light = double(cache_bytes) / (double(data.x) * data.y * data.z);

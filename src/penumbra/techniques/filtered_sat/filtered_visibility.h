@@ -7,6 +7,7 @@
 #include "penumbra/techniques/filtered_sat/light_tables.h"
 #include "penumbra/techniques/sat_common/plane_caches.h"
 #include "penumbra/techniques/sat_common/refined_cells.h"
+#include "penumbra/techniques/sat_common/visibility_cache.h"
 #include "penumbra/volume/volume_sampler.h"
 #include "penumbra/volume/volume_view.h"
 
@@ -62,9 +63,10 @@ inline Box3 filtered_shadow_box(const Box3& box, const ShadowFilter& filter, flo
   return Box3{box.lower - vec3(reach), box.upper + vec3(reach)};
 }
 
-// A trilinear read of a float cache at world positions, and the spread
-// (largest minus smallest) of the 8 texels it interpolates: a bound on how
-// far the interpolation can be from the visibility anywhere in the cell.
+// A trilinear read of a 16-bit visibility cache (unorm16_visibility) at
+// world positions, and the spread (largest minus smallest) of the 8 texels
+// it interpolates: a bound on how far the interpolation can be from the
+// visibility anywhere in the cell.
 template <class L>
 PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Float cache_read_with_spread(const VolumeView& cache,
                                                                            const typename L::Vec3& world,
@@ -74,7 +76,7 @@ PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Float cache_read_with_spread(const
   using X = typename L::Index;
   const VoxelGrid g(cache.dims);
   const GridCell<L> cell(g, (world - V(cache.origin)) / V(cache.spacing));
-  const float* data = static_cast<const float*>(cache.data);
+  const std::uint16_t* data = static_cast<const std::uint16_t*>(cache.data);
   F c000, c100, c010, c110, c001, c101, c011, c111;
   load_voxel_pair(data, cell.base, g.stride_x, g.count, c000, c100);
   load_voxel_pair(data, cell.base + X(g.stride_y), g.stride_x, g.count, c010, c110);
@@ -82,14 +84,14 @@ PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Float cache_read_with_spread(const
   load_voxel_pair(data, cell.base + X(g.stride_y + g.stride_z), g.stride_x, g.count, c011, c111);
   const F hi = max(max(max(c000, c100), max(c010, c110)), max(max(c001, c101), max(c011, c111)));
   const F lo = min(min(min(c000, c100), min(c010, c110)), min(min(c001, c101), min(c011, c111)));
-  spread = hi - lo;
+  spread = (hi - lo) * kUnorm16Step;
   const F x00 = c000 + cell.fx * (c100 - c000);
   const F x10 = c010 + cell.fx * (c110 - c010);
   const F x01 = c001 + cell.fx * (c101 - c001);
   const F x11 = c011 + cell.fx * (c111 - c011);
   const F y0 = x00 + cell.fy * (x10 - x00);
   const F y1 = x01 + cell.fy * (x11 - x01);
-  return y0 + cell.fz * (y1 - y0);
+  return (y0 + cell.fz * (y1 - y0)) * kUnorm16Step;
 }
 
 // A rough cache cell's refined brick (refined_cells.h), or the cache's own
@@ -100,7 +102,13 @@ struct RefinedCacheRead {
   const RefinedCellsView* refined = nullptr;
   PENUMBRA_HD vec3 operator()(int light, vec3 p, const LightSample&) const {
     float value;
-    if (!refined[light].sample(caches[light], p, value)) value = sample_world<ScalarLanes>(caches[light], p);
+    if (!refined[light].sample(caches[light], p, value)) {
+      const VolumeView& cache = caches[light];
+      const VoxelGrid g(cache.dims);
+      value = trilinear<ScalarLanes>(g, static_cast<const std::uint16_t*>(cache.data),
+                                     (p - cache.origin) / cache.spacing) *
+              kUnorm16Step;
+    }
     return vec3(value);
   }
 };

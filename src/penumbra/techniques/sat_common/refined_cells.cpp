@@ -62,7 +62,7 @@ std::vector<vec3> RefinedCells::check_points(int n) {
 }
 
 void RefinedCells::store(int l, const std::vector<std::int64_t>& cells, const std::vector<std::uint8_t>& keep,
-                         const std::vector<std::uint16_t>& texels) {
+                         const std::vector<std::uint8_t>& texels) {
   BrickLevelView& level = view_.level[l];
   const std::size_t blocks = std::size_t(view_.blocks.x) * view_.blocks.y * view_.blocks.z;
   const std::size_t per_brick = std::size_t(level.refine) * level.refine * level.refine;
@@ -75,7 +75,7 @@ void RefinedCells::store(int l, const std::vector<std::int64_t>& cells, const st
     ++total;
   }
   check_memory_budget("the shadow cache's refined cells",
-                      checked_product({std::uint64_t(total), per_brick, sizeof(std::uint16_t)}));
+                      checked_product({std::uint64_t(total), per_brick, sizeof(std::uint8_t)}));
   first_[l].assign(blocks, 0);
   std::size_t before = 0;
   for (std::size_t block = 0; block < blocks; ++block) {
@@ -105,7 +105,7 @@ void RefinedCells::clear() {
   for (int l = 0; l < RefinedCellsView::kMaxLevels; ++l) {
     std::vector<std::uint32_t>().swap(first_[l]);
     std::vector<std::uint64_t>().swap(masks_[l]);
-    std::vector<std::uint16_t>().swap(texels_[l]);
+    std::vector<std::uint8_t>().swap(texels_[l]);
   }
   view_ = RefinedCellsView{};
 }
@@ -120,7 +120,7 @@ std::uint64_t RefinedCells::bytes() const {
   std::uint64_t total = 0;
   for (int l = 0; l < RefinedCellsView::kMaxLevels; ++l) {
     total += first_[l].size() * sizeof(std::uint32_t) + masks_[l].size() * sizeof(std::uint64_t) +
-             texels_[l].size() * sizeof(std::uint16_t);
+             texels_[l].size() * sizeof(std::uint8_t);
   }
   return total;
 }

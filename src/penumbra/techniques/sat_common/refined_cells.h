@@ -21,12 +21,11 @@
 // centred n = 3 reads closer to the tables than corner bricks of 3
 // (docs/filtered-sat.md, "Memory").
 //
-// Texels hold the optical depth tau (visibility = exp(-tau)) in 16-bit fixed
-// point over [0, kMaxDepth] (step 2.4e-4, a relative visibility error below
-// 1.3e-4; tau beyond kMaxDepth reads as kMaxDepth, visibility < 1.2e-7).
-// Interpolating the depth rather than the visibility follows what lit
-// surfaces hold: inside a material the depth grows about linearly with the
-// distance from its surface while the visibility falls exponentially.
+// Texels hold the optical depth tau (visibility = exp(-tau)) as 8-bit codes
+// of the cube root of the visibility (brick_code below). Interpolating the
+// depth rather than the visibility follows what lit surfaces hold: inside a
+// material the depth grows about linearly with the distance from its
+// surface while the visibility falls exponentially.
 //
 // Storage is sparse, per resolution: the cells are grouped in blocks of
 // 4^3; each block keeps a 64-bit mask of the cells that have a brick of
@@ -55,23 +54,36 @@ PENUMBRA_HD inline int popcount64(std::uint64_t bits) {
 #endif
 }
 
-// Brick texels hold the optical depth in 16-bit fixed point over [0, this].
-inline constexpr float kBrickMaxDepth = 16.0f;
+// Brick texels are 8-bit codes of the cube root of the visibility,
+// code = round(255 exp(-tau / 3)), decoded to the optical depth
+// tau = 3 ln(255 / code): steps of 1/255 on the scale of lightness (a code's
+// rounding costs at most 116 / 510 cbrt(Y) = 0.23 cbrt(Y) L*, Y the lit
+// luminance), so that deep shadows need no more bits than the light. Code 0
+// reads kBrickMaxDepth (3 ln 510, where codes round to 0: visibility 7.5e-9).
+inline constexpr float kBrickMaxDepth = 18.7071741f;
 
-// The optical depth read in a brick of n^3 texels (16-bit, x fastest) at
-// `f`, the point's coordinates in its cell ([0, 1]^3): trilinear between
-// the texels (sub-cell centres), extrapolated linearly over the half
-// sub-cells between the outer texels and the cell's faces.
-PENUMBRA_HD inline float brick_depth(const std::uint16_t* t, int n, vec3 f) {
+PENUMBRA_HD inline float brick_code_depth(std::uint8_t code) {
+  return code == 0 ? kBrickMaxDepth : 3.0f * (5.54126354f - log_positive(float(code)));
+}
+inline std::uint8_t brick_code(float depth) {
+  return std::uint8_t(255.0f * exp_nonpositive(-glm::max(depth, 0.0f) * (1.0f / 3.0f)) + 0.5f);
+}
+
+// The optical depth read in a brick of n^3 texels (x fastest) at `f`, the
+// point's coordinates in its cell ([0, 1]^3): trilinear between the texels'
+// depths (sub-cell centres), extrapolated linearly over the half sub-cells
+// between the outer texels and the cell's faces.
+PENUMBRA_HD inline float brick_depth(const std::uint8_t* t, int n, vec3 f) {
   const vec3 s = f * float(n) - 0.5f;
   const ivec3 base = glm::clamp(ivec3(glm::floor(s)), ivec3(0), ivec3(n - 2));
   const int sy = n, sz = n * n;
   auto lerp = [](float a, float b, float w) { return a + w * (b - a); };
+  auto d = [](std::uint8_t code) { return brick_code_depth(code); };
   const vec3 w = s - vec3(base);
-  const std::uint16_t* p = t + base.x + sy * base.y + sz * base.z;
-  const float x00 = lerp(p[0], p[1], w.x), x10 = lerp(p[sy], p[sy + 1], w.x);
-  const float x01 = lerp(p[sz], p[sz + 1], w.x), x11 = lerp(p[sz + sy], p[sz + sy + 1], w.x);
-  return lerp(lerp(x00, x10, w.y), lerp(x01, x11, w.y), w.z) * (kBrickMaxDepth / 65535.0f);
+  const std::uint8_t* p = t + base.x + sy * base.y + sz * base.z;
+  const float x00 = lerp(d(p[0]), d(p[1]), w.x), x10 = lerp(d(p[sy]), d(p[sy + 1]), w.x);
+  const float x01 = lerp(d(p[sz]), d(p[sz + 1]), w.x), x11 = lerp(d(p[sz + sy]), d(p[sz + sy + 1]), w.x);
+  return lerp(lerp(x00, x10, w.y), lerp(x01, x11, w.y), w.z);
 }
 
 // One resolution of bricks: the cells of 4^3-cell blocks that have a brick
@@ -81,7 +93,7 @@ struct BrickLevelView {
   std::uint32_t bricks = 0;
   const std::uint32_t* block_first = nullptr;  // per block
   const std::uint64_t* block_mask = nullptr;   // per block
-  const std::uint16_t* texels = nullptr;       // bricks of refine^3 depth texels, x fastest
+  const std::uint8_t* texels = nullptr;        // bricks of refine^3 texel codes (brick_code), x fastest
 };
 
 struct RefinedCellsView {
@@ -109,7 +121,7 @@ struct RefinedCellsView {
       if (((mask >> bit) & 1u) == 0) continue;
       const std::uint64_t below = mask & ((std::uint64_t(1) << bit) - 1u);
       const int n = v.refine;
-      const std::uint16_t* t =
+      const std::uint8_t* t =
           v.texels + (std::size_t(v.block_first[block]) + std::size_t(popcount64(below))) * std::size_t(n * n * n);
       value = exp_nonpositive(-glm::max(brick_depth(t, n, g - vec3(c)), 0.0f));
       return true;
@@ -174,7 +186,7 @@ class RefinedCells {
             return view.world_from_index(vec3(cell_of(cells[std::size_t(t / per_cell)])) + f);
           },
           tau.data());
-      std::vector<std::uint16_t> texels(cells.size() * std::size_t(per_brick));
+      std::vector<std::uint8_t> texels(cells.size() * std::size_t(per_brick));
       keep.assign(cells.size(), 0);
       std::vector<std::uint8_t> needed(cells.size(), 1);
       parallel_for(0, std::int64_t(cells.size()), [&](std::int64_t first, std::int64_t last) {
@@ -192,11 +204,8 @@ class RefinedCells {
             needed[std::size_t(c)] = missed ? 1 : 0;
             if (!missed) continue;
           }
-          std::uint16_t* out = texels.data() + c * per_brick;
-          for (std::int64_t i = 0; i < per_brick; ++i) {
-            const float clamped = glm::clamp(in[i], 0.0f, RefinedCellsView::kMaxDepth);
-            out[i] = std::uint16_t(clamped * (65535.0f / RefinedCellsView::kMaxDepth) + 0.5f);
-          }
+          std::uint8_t* out = texels.data() + c * per_brick;
+          for (std::int64_t i = 0; i < per_brick; ++i) out[i] = brick_code(in[i]);
           bool good = true;
           for (std::size_t k = 0; k < checks.size() && good && !finest; ++k) {
             const float read = exp_nonpositive(-glm::max(brick_depth(out, n, checks[k]), 0.0f));
@@ -246,12 +255,12 @@ class RefinedCells {
   // Level l's bricks: those of `cells` whose keep flag is set, with their
   // texels (per_brick each, in the order of `cells`).
   void store(int l, const std::vector<std::int64_t>& cells, const std::vector<std::uint8_t>& keep,
-             const std::vector<std::uint16_t>& texels);
+             const std::vector<std::uint8_t>& texels);
 
   RefinedCellsView view_;
   std::vector<std::uint32_t> first_[RefinedCellsView::kMaxLevels];
   std::vector<std::uint64_t> masks_[RefinedCellsView::kMaxLevels];
-  std::vector<std::uint16_t> texels_[RefinedCellsView::kMaxLevels];
+  std::vector<std::uint8_t> texels_[RefinedCellsView::kMaxLevels];
 };
 
 }  // namespace penumbra

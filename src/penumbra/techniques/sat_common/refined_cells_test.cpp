@@ -31,6 +31,9 @@ struct SurfaceDepth {
 constexpr float kTolerance = 0.1f, kProbeTolerance = 0.01f;  // the probe's on the cube root
 constexpr int kRefine = 4;                                      // bricks of 2^3 or 4^3 texels
 
+double cbrt_miss(float read, float truth) {
+  return std::abs(std::cbrt(double(std::max(read, 0.0f))) - std::cbrt(double(truth)));
+}
 bool misses(float read, float truth) {
   return std::abs(std::cbrt(std::max(read, 0.0f)) - std::cbrt(truth)) > kProbeTolerance;
 }
@@ -57,20 +60,19 @@ struct Fixture {
   vec3 world(ivec3 c, vec3 f) const { return cache.view().world_from_index(vec3(c) + f); }
 
   // Brute force: a brick of n^3 texels for cell c, from the depth at the
-  // sub-cell centres, in 16-bit.
-  std::vector<std::uint16_t> brick(ivec3 c, int n) const {
-    std::vector<std::uint16_t> t(std::size_t(n * n * n));
+  // sub-cell centres, coded as 255 exp(-depth / 3).
+  std::vector<std::uint8_t> brick(ivec3 c, int n) const {
+    std::vector<std::uint8_t> t(std::size_t(n * n * n));
     for (int k = 0; k < n * n * n; ++k) {
       const vec3 f = (vec3(k % n, k / n % n, k / (n * n)) + 0.5f) / float(n);
-      const float depth = std::clamp(tau(world(c, f)), 0.0f, RefinedCellsView::kMaxDepth);
-      t[std::size_t(k)] = std::uint16_t(depth * (65535.0f / RefinedCellsView::kMaxDepth) + 0.5f);
+      t[std::size_t(k)] = std::uint8_t(std::lround(255.0 * std::exp(-std::max(tau(world(c, f)), 0.0f) / 3.0)));
     }
     return t;
   }
   // Whether a brick of n^3 misses the visibility halfway between two of
   // its texels or at a face's centre.
   bool brick_misses(ivec3 c, int n) const {
-    const std::vector<std::uint16_t> t = brick(c, n);
+    const std::vector<std::uint8_t> t = brick(c, n);
     std::vector<vec3> checks;
     for (int z = 1; z < n; ++z)
       for (int y = 1; y < n; ++y)
@@ -151,7 +153,7 @@ TEST(RefinedCells, BricksMatchBruteForce) {
         for (int k = 0; k < n * n * n; ++k) {
           const vec3 f = (vec3(k % n, k / n % n, k / (n * n)) + 0.5f) / float(n);
           ASSERT_TRUE(view.sample(cache, fx.world(c, f), value));
-          worst_texel = std::max(worst_texel, double(std::abs(value - fx.tau.visibility(fx.world(c, f)))));
+          worst_texel = std::max(worst_texel, cbrt_miss(value, fx.tau.visibility(fx.world(c, f))));
         }
         // The surface crosses the cell where its corners lie on both sides.
         float s_lo = 1e9f, s_hi = -1e9f;
@@ -166,7 +168,7 @@ TEST(RefinedCells, BricksMatchBruteForce) {
           ASSERT_TRUE(view.sample(cache, fx.world(c, f), value));
           const float truth = fx.tau.visibility(fx.world(c, f));
           if (!crosses) {
-            worst_linear = std::max(worst_linear, double(std::abs(value - truth)));
+            worst_linear = std::max(worst_linear, cbrt_miss(value, truth));
             continue;
           }
           crossing += std::abs(value - truth);
@@ -176,28 +178,32 @@ TEST(RefinedCells, BricksMatchBruteForce) {
       }
   crossing /= crossing_points;
   crossing_cache /= crossing_points;
-  std::printf("[refined cells] %zu bricks (%zu of 2^3) of %zu rough cells; worst |dV| at texels %.2e, in linear "
-              "cells %.2e; mean |dV| where the surface crosses %.4f (the cache there: %.4f)\n",
+  std::printf("[refined cells] %zu bricks (%zu of 2^3) of %zu rough cells; worst |d cbrt V| at texels %.2e, in "
+              "linear cells %.2e; mean |dV| where the surface crosses %.4f (the cache there: %.4f)\n",
               expected, coarse, rough, worst_texel, worst_linear, crossing, crossing_cache);
   EXPECT_EQ(fx.cells.brick_count(), expected);
   EXPECT_EQ(fx.cells.brick_count(0), coarse);
   EXPECT_GT(coarse, 20u) << "cells a plane surface does not cross need no more than 2^3";
   EXPECT_GT(expected - coarse, 20u) << "cells it crosses need more";
   EXPECT_LT(expected, rough - 20) << "the probes leave out rough cells the cache reads well";
-  EXPECT_LT(worst_texel, 2e-4);   // 16-bit depth: 1.3e-4 relative
-  EXPECT_LT(worst_linear, 5e-4);  // exact up to the rounding
+  // The codes round the cube root of the visibility to 1/255: at most half
+  // a step at the texels. Between them a lit point's read also carries a
+  // deeper texel's rounding, which is larger in depth (and doubled where the
+  // half sub-cells at the faces extrapolate): measured 1.9 steps.
+  EXPECT_LT(worst_texel, 0.5 / 255.0 + 1e-5);
+  EXPECT_LT(worst_linear, 2.5 / 255.0);
   // Across the surface the depth's kink is interpolated over one sub-cell
   // instead of the visibility's over the cell.
   EXPECT_LT(crossing, 0.2 * crossing_cache);  // measured 0.10
 }
 
 // Bytes: per level with bricks a 4-byte first index and an 8-byte mask per
-// block of 4^3 cells, and n^3 16-bit texels per brick; bricks that do not
+// block of 4^3 cells, and n^3 8-bit texels per brick; bricks that do not
 // fit the memory budget are a typed error before anything is allocated.
 TEST(RefinedCells, BytesAndMemoryBudget) {
   Fixture fx;
   const std::uint64_t blocks = 3 * 3 * 3;  // 9 cells per axis in blocks of 4
-  EXPECT_EQ(fx.cells.bytes(), 2 * blocks * 12 + fx.cells.brick_count(0) * 8 * 2 + fx.cells.brick_count(1) * 64 * 2);
+  EXPECT_EQ(fx.cells.bytes(), 2 * blocks * 12 + fx.cells.brick_count(0) * 8 + fx.cells.brick_count(1) * 64);
   RefinedCells finer;
   finer.build(fx.cache, kTolerance, kProbeTolerance, 8, fx.tau);  // 2, 4, 6 and 8
   ASSERT_EQ(finer.view().levels, 4);
@@ -206,7 +212,7 @@ TEST(RefinedCells, BytesAndMemoryBudget) {
   std::uint64_t bytes = 0;
   for (int l = 0; l < 4; ++l) {
     const std::uint64_t n = 2 * std::uint64_t(l + 1);
-    if (finer.brick_count(l) > 0) bytes += blocks * 12 + finer.brick_count(l) * n * n * n * 2;
+    if (finer.brick_count(l) > 0) bytes += blocks * 12 + finer.brick_count(l) * n * n * n;
   }
   EXPECT_EQ(finer.bytes(), bytes);
   finer.clear();
@@ -214,7 +220,7 @@ TEST(RefinedCells, BytesAndMemoryBudget) {
   float value;
   EXPECT_FALSE(finer.view().sample(fx.cache.view(), vec3(9.0f), value));
   const std::uint64_t budget = memory_budget_bytes();
-  set_memory_budget_bytes(fx.cells.brick_count(1) * 64 * 2 - 1);
+  set_memory_budget_bytes(fx.cells.brick_count(1) * 64 - 1);
   EXPECT_THROW(finer.build(fx.cache, kTolerance, kProbeTolerance, 4, fx.tau), OutOfMemoryBudget);
   set_memory_budget_bytes(budget);
 }

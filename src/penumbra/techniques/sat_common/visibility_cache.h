@@ -36,6 +36,14 @@ template <class Visibility> Volume build_visibility_cache(const Box3& box, ivec3
   return cache;
 }
 
+// Visibility grids may also be kept in 16-bit (filtered-sat's, issue 22):
+// texel = round(65535 v), a step of 1.5e-5 (at most 0.007 L* where the
+// visibility is that small, where lightness is linear in it: 903.3 Y).
+inline constexpr float kUnorm16Step = 1.0f / 65535.0f;
+// `cache` (a float visibility grid from build_visibility_cache) in 16-bit,
+// with the same geometry.
+Volume unorm16_visibility(const Volume& cache);
+
 // One cache per light, and the parameters they were built with, for the SAT
 // techniques' optional shadow cache. A light without a cache (an environment
 // light, or one the technique has no table for) has an empty view. Caches are
@@ -46,6 +54,9 @@ class LightVisibilityCaches {
   // rebuild what the caches are made from, which clears them).
   bool current(const ParameterValues& params) const { return built_ && params == params_; }
   bool built() const { return built_; }
+  // Keep the caches in 16-bit (unorm16_visibility) once after_build ran
+  // (which sees the float cache); the views then hold uint16 texels.
+  void set_unorm16(bool unorm16) { unorm16_ = unorm16; }
 
   // For each light i < light_count with has_cache(i): a cache of `dims` over
   // `box` holding visibility(i, world) (or the batch visibility(i, count,
@@ -73,7 +84,7 @@ class LightVisibilityCaches {
   int update(std::size_t light_count, const Box3& box, ivec3 dims, const ParameterValues& params,
              const HasCache& has_cache, const Stale& stale, const Visibility& visibility,
              const BeforeBuild& before_build, const AfterBuild& after_build) {
-    const bool all = !built_ || !(params == params_) || dims != dims_ || box.lower != box_.lower ||
+    const bool all = !built_ || unorm16_ != built_unorm16_ || !(params == params_) || dims != dims_ || box.lower != box_.lower ||
                      box.upper != box_.upper;
     caches_.resize(light_count);
     for (std::size_t i = 0; i < light_count; ++i) {
@@ -88,6 +99,10 @@ class LightVisibilityCaches {
         evaluate_light_batch(visibility, i, count, point, out);
       }));
       after_build(i, *caches_[i]);
+      if (unorm16_) {
+        Volume compact = unorm16_visibility(*caches_[i]);
+        caches_[i].emplace(std::move(compact));
+      }
       ++count;
     }
     views_.assign(light_count, VolumeView{});
@@ -95,6 +110,7 @@ class LightVisibilityCaches {
       if (caches_[i]) views_[i] = caches_[i]->view();
     }
     built_ = true;
+    built_unorm16_ = unorm16_;
     params_ = params;
     dims_ = dims;
     box_ = box;
@@ -118,6 +134,7 @@ class LightVisibilityCaches {
   std::vector<std::optional<Volume>> caches_;  // one per light
   std::vector<VolumeView> views_;              // one per light
   bool built_ = false;
+  bool unorm16_ = false, built_unorm16_ = false;
   ParameterValues params_;
   ivec3 dims_{0};
   Box3 box_;
