@@ -11,6 +11,7 @@
 #include "penumbra/techniques/sat_common/table_dependencies.h"
 #include "penumbra/techniques/sat_common/visibility_cache.h"
 
+#include <cassert>
 #include <limits>
 #include <optional>
 #include <vector>
@@ -183,6 +184,9 @@ class FilteredSat final : public Technique {
     if (caches_.built()) {
       // Without the tables every lookup reads the cache (clamped to its box).
       constexpr float kFar = std::numeric_limits<float>::max();
+      for (std::size_t i = 0; i < placements_.size(); ++i) {  // CachedFilteredVisibility reads them in 16-bit
+        assert(!caches_.views()[i].data || caches_.views()[i].type == VoxelType::UInt16);
+      }
       const Box3 tables_box = tables_kept_ ? view.box : Box3{vec3(-kFar), vec3(kFar)};
       const CachedFilteredVisibility cached{direct, caches_.views(), tables_box, cache_tolerance_,
                                             refined_views_.empty() ? nullptr : refined_views_.data(),

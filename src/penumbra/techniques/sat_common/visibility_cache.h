@@ -84,8 +84,8 @@ class LightVisibilityCaches {
   int update(std::size_t light_count, const Box3& box, ivec3 dims, const ParameterValues& params,
              const HasCache& has_cache, const Stale& stale, const Visibility& visibility,
              const BeforeBuild& before_build, const AfterBuild& after_build) {
-    const bool all = !built_ || unorm16_ != built_unorm16_ || !(params == params_) || dims != dims_ || box.lower != box_.lower ||
-                     box.upper != box_.upper;
+    const bool all = !built_ || unorm16_ != built_unorm16_ || !(params == params_) || dims != dims_ ||
+                     box.lower != box_.lower || box.upper != box_.upper;
     caches_.resize(light_count);
     for (std::size_t i = 0; i < light_count; ++i) {
       if (!has_cache(i)) caches_[i].reset();
