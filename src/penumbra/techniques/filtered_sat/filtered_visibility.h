@@ -135,6 +135,7 @@ struct CachedFilteredVisibility {
       std::vector<RefinedCellsView> copy(refined, refined + m.light_count());
       for (RefinedCellsView& r : copy) {
         const std::size_t blocks = std::size_t(r.blocks.x) * r.blocks.y * r.blocks.z;
+        if (r.depth_of_code) r.depth_of_code = m.structure(r.depth_of_code, 256, "the bricks' depth table");
         for (int l = 0; l < r.levels; ++l) {
           BrickLevelView& v = r.level[l];
           if (v.bricks == 0) continue;

@@ -3,8 +3,20 @@
 #include "penumbra/base/memory_budget.h"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 
 namespace penumbra {
+
+const float* brick_depth_table() {
+  static const std::array<float, 256> table = [] {
+    std::array<float, 256> depths{};
+    depths[0] = kBrickMaxDepth;
+    for (int code = 1; code < 256; ++code) depths[std::size_t(code)] = float(3.0 * std::log(255.0 / code));
+    return depths;
+  }();
+  return table.data();
+}
 
 void RefinedCells::plan(const Volume& cache, float tolerance, int refine) {
   clear();
@@ -44,6 +56,7 @@ void RefinedCells::plan(const Volume& cache, float tolerance, int refine) {
   for (int r = 2; r < refine && count + 1 < RefinedCellsView::kMaxLevels; r += 2) view_.level[count++].refine = r;
   view_.level[count++].refine = refine;
   view_.levels = count;
+  view_.depth_of_code = brick_depth_table();
 }
 
 std::vector<vec3> RefinedCells::check_points(int n) {

@@ -84,7 +84,9 @@ struct Fixture {
         checks.push_back(f);
       }
     for (const vec3& f : checks) {
-      if (misses(std::exp(-brick_depth(t.data(), n, f)), tau.visibility(world(c, f)))) return true;
+      if (misses(std::exp(-brick_depth(t.data(), n, f, brick_depth_table())), tau.visibility(world(c, f)))) {
+        return true;
+      }
     }
     return false;
   }
