@@ -100,7 +100,6 @@ struct BrickLevelView {
 };
 
 struct RefinedCellsView {
-  static constexpr float kMaxDepth = kBrickMaxDepth;
   static constexpr int kMaxLevels = 4;  // refine 2, 4, 6, 8 at the most
   ivec3 cells{0};   // cache cells per axis (cache dims - 1)
   ivec3 blocks{0};  // blocks of 4^3 cells per axis
