@@ -103,11 +103,8 @@ struct RefinedCacheRead {
   PENUMBRA_HD vec3 operator()(int light, vec3 p, const LightSample&) const {
     float value;
     if (!refined[light].sample(caches[light], p, value)) {
-      const VolumeView& cache = caches[light];
-      const VoxelGrid g(cache.dims);
-      value = trilinear<ScalarLanes>(g, static_cast<const std::uint16_t*>(cache.data),
-                                     (p - cache.origin) / cache.spacing) *
-              kUnorm16Step;
+      float spread;
+      value = cache_read_with_spread<ScalarLanes>(caches[light], p, spread);
     }
     return vec3(value);
   }
