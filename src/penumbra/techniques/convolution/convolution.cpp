@@ -21,6 +21,7 @@ class Convolution final : public Technique {
     s.seed = std::uint64_t(params.integer("seed"));
     s.preintegrated = params.flag("preintegrated");
     s.guard_band = params.flag("guard_band");
+    s.carried_light = params.flag("carried_light");
     const std::string jitter = params.choice("jitter");
     s.jitter = jitter == "on" || (jitter == "scene" && scene.render().jitter);
     renderer_.prepare(scene, s);
@@ -60,6 +61,8 @@ TechniqueInfo convolution_info() {
                               "preintegrated compositing of the volume between slabs (Engel et al. 2001)"),
           ParameterSpec::flag("guard_band", true,
                               "sweep the light buffers over a band around the image, so occluders just outside it shadow"),
+          ParameterSpec::flag("carried_light", true,
+                              "zero-variance lights on buffers that follow their rays (no re-sampling blur; off: re-sampled every slab)"),
           ParameterSpec::choice("jitter", "scene", {"scene", "on", "off"},
                                 "per-pixel sample offset within each slab (scene: the scene's render.jitter)"),
       }},

@@ -108,12 +108,12 @@ float rising_crossing(const std::vector<float>& row, float level) {
 // Section 7: a zero-variance light gives hard shadows like shadow-rays, up to
 // the blur the paper admits (bilinear reads of the buffers between slabs
 // smear a Dirac kernel; penumbra reads single-tap kernels with clamped
-// Catmull-Rom instead, light_propagation.h, which adds no variance). So: the
-// half-shadow edge on the floor is where shadow-rays puts it (A.5; within
-// 1 px), the edge is sharp (10-90% width measured 3.5 px; 7.4 px with
-// bilinear reads, 0.8 px for shadow-rays: bound 4.5 px), and away from the
-// edge (umbra, lit floor: more than 8 px from it) the floor matches within
-// 0.02.
+// Catmull-Rom, light_propagation.h, and carries the light along its rays
+// across empty space, carried_light.h). So: the half-shadow edge on the floor
+// is where shadow-rays puts it (A.5; within 1 px), the edge is sharp (10-90%
+// width measured 1.91 px; 3.5 px re-sampled every slab, 7.4 px with bilinear
+// reads, 0.84 px for shadow-rays: bound 2.5 px), and away from the edge
+// (umbra, lit floor: more than 8 px from it) the floor matches within 0.02.
 TEST(Convolution, ZeroVarianceMatchesShadowRays) {
   const Scene scene = edge_scene(96);
   const Image conv = render_with(scene, "convolution", {{"kernel", std::string("ellipse")}});
@@ -129,12 +129,38 @@ TEST(Convolution, ZeroVarianceMatchesShadowRays) {
   const float width_conv = rising_crossing(a, 0.9f * lit) - rising_crossing(a, 0.1f * lit);
   const float width_rays = rising_crossing(b, 0.9f * lit) - rising_crossing(b, 0.1f * lit);
   std::printf("zero variance: 10-90 width %.2f px (shadow-rays %.2f)\n", width_conv, width_rays);
-  EXPECT_LT(width_conv, 4.5f);
+  EXPECT_LT(width_conv, 2.5f);
   float worst = 0.0f;
   for (std::size_t x = a.size() / 2 + 8; x < a.size(); ++x) {
     if (std::abs(float(x) - edge_rays) > 8.0f) worst = std::max(worst, std::abs(a[x] - b[x]));
   }
   EXPECT_LT(worst, 0.02f);
+}
+
+// Hard shadows at every image size (issue 23): with light carried along its
+// rays across empty space (carried_light.h) the edge scene's 10-90 % floor
+// width is 1.83 / 1.66 / 1.63 px at 64^2 / 128^2 / 256^2 (1.71 at 512^2);
+// re-sampled every slab (carried_light=false) it was 3.32 / 3.47 / 2.96
+// (3.30); shadow-rays 1.42 / 0.84 / 0.84. The half-shadow line is within
+// 0.45 / 0.24 / 0.17 px of shadow-rays'.
+TEST(Convolution, HardShadowsStayNarrowAtEverySize) {
+  for (int size : {64, 128, 256}) {
+    const Scene scene = edge_scene(size);
+    float width[3], half[3];
+    for (int variant = 0; variant < 3; ++variant) {
+      const Image im = variant == 2 ? render_with(scene, "shadow-rays")
+                                    : render_with(scene, "convolution", {{"carried_light", variant == 0}});
+      const std::vector<float> row = floor_profile(im);
+      const float lit = row.back();
+      width[variant] = rising_crossing(row, 0.9f * lit) - rising_crossing(row, 0.1f * lit);
+      half[variant] = rising_crossing(row, 0.5f * lit);
+    }
+    std::printf("%d^2: 10-90 width carried %.2f, re-sampled %.2f, shadow-rays %.2f px; half-shadow %.2f / %.2f / %.2f\n",
+                size, width[0], width[1], width[2], half[0], half[1], half[2]);
+    EXPECT_LT(width[0], 2.1f) << size;
+    EXPECT_GT(width[1], 1.5f * width[0]) << size;  // the re-sampled light, for the test to mean something
+    EXPECT_NEAR(half[0], half[2], 1.0f) << size;
+  }
 }
 
 // Appendix A.5 at the level of the technique: the half-shadow line on the

@@ -5,6 +5,7 @@
 #include "penumbra/base/parallel.h"
 #include "penumbra/render/lighting.h"
 #include "penumbra/render/microfacet.h"
+#include "penumbra/techniques/convolution/carried_light.h"
 #include "penumbra/techniques/convolution/light_propagation.h"
 #include "penumbra/techniques/convolution/mesh_layers.h"
 
@@ -243,6 +244,41 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
     kernels.emplace_back(settings_.kernel, settings_.kernel_samples, mean, covariance, seed);
     light_path.push_back(e / lights[std::size_t(l)].cos_view);
   }
+  // Zero-variance lights are also carried along their rays across empty
+  // space (carried_light.h), on grids that cover the frame down to the
+  // smallest scale a perspective camera gives them over the slabs (z_first /
+  // z_last, at least 1/2: below that they are re-sampled onto the pixel grid).
+  std::vector<char> carried(static_cast<std::size_t>(light_count), 0);
+  for (int l = 0; l < light_count; ++l) {
+    carried[std::size_t(l)] = settings_.carried_light && kernels[std::size_t(l)].sample_count() == 1;
+  }
+  const bool any_carried = std::find(carried.begin(), carried.end(), 1) != carried.end();
+  float min_scale = 1.0f;
+  if (!cam.orthographic && slabs > 1) {
+    const float z_first = z_front + 0.5f * e, z_last = z_front + (float(slabs) - 0.5f) * e;
+    min_scale = 0.98f * glm::clamp(z_first / z_last, 0.5f, 1.0f);
+  }
+  if (any_carried) {
+    const CarriedGrid g = carried_grid(width, height, min_scale);
+    const auto count = std::uint64_t(std::count(carried.begin(), carried.end(), 1));
+    check_memory_budget("convolution carried light grids",
+                        checked_product({std::uint64_t(g.width), std::uint64_t(g.height), 2 * count + 1,
+                                         std::uint64_t(channels + 1) * sizeof(float)}));
+  }
+  // A texel must have travelled about a pixel clear of any medium before a
+  // pixel takes its light (carried_light.h): that many slabs of the carried
+  // lights' least sideways travel at the middle depth, at most 16.
+  constexpr int kMaxClearSlabs = 16;
+  float drift = kInfinity;  // pixels per slab
+  const float middle_ppu = slab_mapping(SlabFrame{cam, width, height, e}, 0.5f * (z_front + z_back)).pixels_per_unit;
+  for (int l = 0; l < light_count; ++l) {
+    if (carried[std::size_t(l)]) drift = glm::min(drift, middle_ppu * e * glm::length(lights[std::size_t(l)].mu));
+  }
+  const int clear_slabs = drift * float(kMaxClearSlabs) > 1.0f ? int(std::ceil(1.0f / drift)) : kMaxClearSlabs;
+  carried_.start(width, height, channels, min_scale, clear_slabs, carried);
+  // Each pixel's optical depth per unit light path in the last slab (what the
+  // carried grids test for medium).
+  std::vector<float> slab_depth(any_carried ? pixels * std::size_t(channels) : 0, 0.0f);
   const SlabFrame frame{cam, width, height, e};
   const float min_transmittance = 1.0f - view.ert_threshold;
   const bool separate_shadow_tf = scene.shadow_transfer_function().has_value();
@@ -282,6 +318,13 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
         if (k == 0) continue;  // buffers start unoccluded
         const SlabKernel kernel = kernels[std::size_t(l)].for_slab(k);
         for (int c = 0; c < channels; ++c) convolve_slab(frame, kernel, buffer(l, current, c), buffer(l, next, c), z);
+        if (carried[std::size_t(l)]) {
+          const SlabMapping m = slab_mapping(frame, z);
+          const vec2 o = kernel.offset(0, 1.0f, 0.0f);
+          const vec2 w = m.pixels_per_unit * vec2(-o.x, o.y);
+          carried_.advance(l, buffer(l, current), slab_depth.data(), m, w);
+          carried_.fill_free_pixels(l, buffer(l, next), slab_depth.data(), m, w);
+        }
       }
       if (k > 0) current = next;
       parallel_for(0, height, [&](std::int64_t first, std::int64_t last) {
@@ -292,6 +335,7 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
           for (int x = 0; x < width; ++x) {
             const std::size_t i = std::size_t(x) + std::size_t(width) * std::size_t(y);
             PixelState& p = px[i];
+            if (any_carried) std::fill_n(slab_depth.data() + i * std::size_t(channels), channels, 0.0f);
             if (p.done) continue;  // behind an opaque plane: nothing of this pixel is left to see or to shadow
             const bool plane_here = p.plane >= 0 && p.z_plane < z1;
             const bool shading = !p.guard && p.transmittance > min_transmittance;
@@ -430,6 +474,7 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
             }
             // (4) the light leaving this slab toward the next.
             const vec3 optical_depth = volume_shadow + mesh_shadow;
+            if (any_carried) std::copy_n(&optical_depth[0], channels, slab_depth.data() + i * std::size_t(channels));
             if (max_component(optical_depth) > 0.0f) {
               for (int l = 0; l < light_count; ++l) {
                 for (int c = 0; c < channels; ++c) {
@@ -481,7 +526,8 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
 }
 
 std::uint64_t SlabRenderer::aux_bytes() const {
-  return buffers_.size() * sizeof(float) + meshes_.bytes() + (settings_.preintegrated ? preintegration_.bytes() : 0);
+  return buffers_.size() * sizeof(float) + carried_.bytes() + meshes_.bytes() +
+         (settings_.preintegrated ? preintegration_.bytes() : 0);
 }
 
 }  // namespace penumbra

@@ -36,6 +36,7 @@
 #include "penumbra/render/render_loop.h"
 #include "penumbra/render/scene_resources.h"
 #include "penumbra/scene/scene.h"
+#include "penumbra/techniques/convolution/carried_light.h"
 #include "penumbra/techniques/convolution/gaussian_light.h"
 #include "penumbra/techniques/convolution/mesh_resources.h"
 #include "penumbra/techniques/convolution/preintegration.h"
@@ -56,6 +57,7 @@ struct SlabSettings {
   bool preintegrated = false;
   bool guard_band = true;  // light buffers over a band around the image (slab_renderer.cpp)
   bool jitter = false;     // per-pixel sample offset within each slab (render.jitter, or the technique's knob)
+  bool carried_light = true;  // zero-variance lights also carried along their rays across empty space
 };
 
 class SlabRenderer {
@@ -73,6 +75,7 @@ class SlabRenderer {
   MeshResources meshes_;
   PreintegrationCache preintegration_;
   SlabSettings settings_;
+  CarriedLights carried_;  // zero-variance lights' grids (carried_light.h)
   std::vector<float> buffers_;  // 2 per light, ping-pong: the light's transmittance, grey or per channel (DESIGN-NOTES)
   int last_slabs_ = 0;
 };
