@@ -26,6 +26,9 @@
 //   seed                for the random kernel rotations
 //   preintegrated       preintegrated compositing of the volume (Fig. 19)
 //   guard_band          light buffers over a band around the image
+//   carried_light       zero-variance lights also carried along their rays
+//                       across empty space (carried_light.h; off: re-sampled
+//                       every slab, as before issue 23)
 //   jitter              scene | on | off: per-pixel sample offset within each
 //                       slab (scene: the scene's render.jitter)
 // Passes

@@ -3,7 +3,9 @@
 // perpendicular to the camera's forward axis through the volume box (and on
 // to the farthest plane hit, at most one box diagonal beyond it), front to
 // back. Per slab: (1) every light's buffer is convolved from the previous
-// slab's outgoing light (light_propagation.h); then per pixel (3) the volume
+// slab's outgoing light (light_propagation.h), and a zero-variance light's
+// pixels whose light crossed only empty space take it from the grid that
+// carries it along its rays (carried_light.h); then per pixel (3) the volume
 // is sampled once at the middle (or, with jitter, at the pixel's hashed
 // offset) of the part of the slab that lies inside the box and clip planes (the TF-classified scalar field; that part's length
 // along the ray is the segment length) and shaded by the shared
