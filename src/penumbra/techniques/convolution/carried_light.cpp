@@ -8,10 +8,10 @@
 namespace penumbra {
 
 CarriedGrid carried_grid(int frame_width, int frame_height, float min_scale) {
-  // Half the grid, times the smallest scale, must reach half the frame plus
-  // half a texel of offset and 2 texels of bilinear support.
+  // Half the grid, times the smallest scale, must reach half the frame, plus
+  // the offset it may run up before a shift and 2 texels of bilinear support.
   const auto texels = [min_scale](int pixels) {
-    return 2 * int(std::ceil((0.5f * float(pixels) + 2.5f) / min_scale));
+    return 2 * int(std::ceil(0.5f * float(pixels) / min_scale + float(CarriedGrid::kShiftTexels) + 2.5f));
   };
   CarriedGrid g;
   g.width = texels(frame_width);
@@ -47,8 +47,9 @@ void resample_carried_grid(CarriedGrid& grid, const float* from, float* to, int 
 ivec2 shift_carried_grid(CarriedGrid& grid, const float* from, float* to, int planes) {
   // Texel x of the shifted grid is texel x + n of this one, whose centre is
   // scale n further along: offset + scale n stays within half a texel.
-  const ivec2 n(int(std::lround(-grid.offset.x / grid.scale)), int(std::lround(-grid.offset.y / grid.scale)));
-  if (n == ivec2(0)) return n;
+  const vec2 drift = grid.offset / grid.scale;  // texels
+  if (glm::max(std::abs(drift.x), std::abs(drift.y)) <= float(CarriedGrid::kShiftTexels)) return ivec2(0);
+  const ivec2 n(int(std::lround(-drift.x)), int(std::lround(-drift.y)));
   const std::size_t plane = std::size_t(grid.width) * std::size_t(grid.height);
   grid.offset += grid.scale * vec2(n);
   parallel_for(0, grid.height, [&](std::int64_t first, std::int64_t last) {
@@ -66,19 +67,26 @@ ivec2 shift_carried_grid(CarriedGrid& grid, const float* from, float* to, int pl
   return n;
 }
 
-bool touches_medium(const float* depth, int channels, int frame_width, int frame_height, vec2 p) {
-  const int x0 = int(std::floor(glm::clamp(p.x - 0.5f, -2.0f, float(frame_width))));
-  const int y0 = int(std::floor(glm::clamp(p.y - 0.5f, -2.0f, float(frame_height))));
-  for (int j = 0; j < 2; ++j) {
-    const std::size_t row = std::size_t(frame_width) * std::size_t(glm::clamp(y0 + j, 0, frame_height - 1));
-    for (int i = 0; i < 2; ++i) {
-      const float* d = depth + (row + std::size_t(glm::clamp(x0 + i, 0, frame_width - 1))) * std::size_t(channels);
-      for (int c = 0; c < channels; ++c) {
-        if (d[c] > 0.0f) return true;
-      }
+void MediumMask::resize(int frame_width, int frame_height) {
+  width_ = frame_width;
+  height_ = frame_height;
+  any_.assign(std::size_t(frame_width) * std::size_t(frame_height), 0);
+  mask_.assign(std::size_t(frame_width + 1) * std::size_t(frame_height + 1), 0);
+}
+
+void MediumMask::build() {
+  const int w = width_, h = height_;
+  // Entry (x0 + 1, y0 + 1): pixels x0, x0 + 1 and y0, y0 + 1, clamped.
+  parallel_for(-1, h, [&](std::int64_t first, std::int64_t last) {
+    for (int y0 = int(first); y0 < int(last); ++y0) {
+      const std::uint8_t* r0 = any_.data() + std::size_t(w) * std::size_t(glm::max(y0, 0));
+      const std::uint8_t* r1 = any_.data() + std::size_t(w) * std::size_t(glm::min(y0 + 1, h - 1));
+      std::uint8_t* m = mask_.data() + std::size_t(w + 1) * std::size_t(y0 + 1);
+      m[0] = r0[0] | r1[0];
+      for (int x0 = 0; x0 < w - 1; ++x0) m[x0 + 1] = r0[x0] | r0[x0 + 1] | r1[x0] | r1[x0 + 1];
+      m[w] = r0[w - 1] | r1[w - 1];
     }
-  }
-  return false;
+  });
 }
 
 void CarriedLights::start(int frame_width, int frame_height, int channels, float min_scale, int min_age,
@@ -93,6 +101,7 @@ void CarriedLights::start(int frame_width, int frame_height, int channels, float
   const std::size_t plane = std::size_t(g.width) * std::size_t(g.height);
   grids_.assign(carried.size(), g);
   half_.assign(carried.size(), 0);
+  steps_.assign(carried.size(), 0);
   base_.assign(carried.size(), 0);
   std::size_t floats = 0;
   for (std::size_t l = 0; l < carried.size(); ++l) {
@@ -103,8 +112,8 @@ void CarriedLights::start(int frame_width, int frame_height, int channels, float
   for (std::size_t l = 0; l < carried.size(); ++l) {  // and no medium touched yet
     if (!carried[l]) continue;
     for (int half = 0; half < 2; ++half) {
-      float* age = texels(int(l), half) + std::size_t(channels) * plane;
-      std::fill(age, age + plane, kNeverTouched);
+      float* touched = texels(int(l), half) + std::size_t(channels) * plane;
+      std::fill(touched, touched + plane, kNeverTouched);
     }
   }
 }
@@ -115,22 +124,19 @@ float* CarriedLights::texels(int l, int half) {
          std::size_t(half) * std::size_t(channels_ + 1) * std::size_t(g.width) * std::size_t(g.height);
 }
 
-void CarriedLights::advance(int l, const float* out, const float* depth, const SlabMapping& mapping, vec2 w) {
+void CarriedLights::advance(int l, const float* out, const MediumMask& medium, const SlabMapping& mapping, vec2 w) {
   CarriedGrid& g = grids_[std::size_t(l)];
   int& half = half_[std::size_t(l)];
   float* t = texels(l, half);
   const std::size_t plane = std::size_t(g.width) * std::size_t(g.height);
   const std::size_t frame_plane = std::size_t(frame_width_) * std::size_t(frame_height_);
+  const float step = float(++steps_[std::size_t(l)]);
   parallel_for(0, g.height, [&](std::int64_t first, std::int64_t last) {
     for (std::int64_t y = first; y < last; ++y) {
       for (int x = 0; x < g.width; ++x) {
         const vec2 p = g.position(x, int(y));
-        float& age = t[std::size_t(channels_) * plane + std::size_t(x) + std::size_t(g.width) * std::size_t(y)];
-        if (!touches_medium(depth, channels_, frame_width_, frame_height_, p)) {
-          age = glm::min(age + 1.0f, kNeverTouched);
-          continue;
-        }
-        age = 0.0f;
+        if (!medium.touches(p)) continue;
+        t[std::size_t(channels_) * plane + std::size_t(x) + std::size_t(g.width) * std::size_t(y)] = step;
         for (int c = 0; c < channels_; ++c) {
           t[std::size_t(c) * plane + std::size_t(x) + std::size_t(g.width) * std::size_t(y)] =
               read_buffer(out + std::size_t(c) * frame_plane, frame_width_, frame_height_, p);
@@ -147,43 +153,52 @@ void CarriedLights::advance(int l, const float* out, const float* depth, const S
   }
 }
 
-namespace {
-
-// The least of the four texels a bilinear read at `texel` takes (clamp-to-edge).
-float least_around(const float* plane, int width, int height, vec2 texel) {
-  const int x0 = int(std::floor(glm::clamp(texel.x - 0.5f, -2.0f, float(width))));
-  const int y0 = int(std::floor(glm::clamp(texel.y - 0.5f, -2.0f, float(height))));
-  float least = CarriedLights::kNeverTouched;
-  for (int j = 0; j < 2; ++j) {
-    const std::size_t row = std::size_t(width) * std::size_t(glm::clamp(y0 + j, 0, height - 1));
-    for (int i = 0; i < 2; ++i) least = glm::min(least, plane[row + std::size_t(glm::clamp(x0 + i, 0, width - 1))]);
-  }
-  return least;
-}
-
-}  // namespace
-
-std::uint64_t CarriedLights::fill_free_pixels(int l, float* incoming, const float* depth, const SlabMapping& mapping,
-                                              vec2 w) const {
+std::uint64_t CarriedLights::propagate(int l, const SlabFrame& frame, const SlabKernel& kernel, const float* out,
+                                       float* incoming, const MediumMask& medium, const SlabMapping& mapping,
+                                       vec2 w) const {
   const CarriedGrid& g = grids_[std::size_t(l)];
   const std::size_t plane = std::size_t(g.width) * std::size_t(g.height);
   const std::size_t frame_plane = std::size_t(frame_width_) * std::size_t(frame_height_);
   const float* t =
       texels_.data() + base_[std::size_t(l)] + std::size_t(half_[std::size_t(l)]) * std::size_t(channels_ + 1) * plane;
-  const float* age = t + std::size_t(channels_) * plane;
+  const float* touched = t + std::size_t(channels_) * plane;
+  const float clear_since = float(steps_[std::size_t(l)] - min_age_);  // the latest touch a texel may have
   std::atomic<std::uint64_t> free{0};
   parallel_for(0, frame_height_, [&](std::int64_t first, std::int64_t last) {
     std::uint64_t count = 0;
     for (std::int64_t y = first; y < last; ++y) {
       for (int x = 0; x < frame_width_; ++x) {
         const vec2 p(float(x) + 0.5f, float(y) + 0.5f);
+        const std::size_t i = std::size_t(x) + std::size_t(frame_width_) * std::size_t(y);
+        const auto resampled = [&] {
+          for (int c = 0; c < channels_; ++c) {
+            incoming[std::size_t(c) * frame_plane + i] =
+                convolve_texel_mapped(frame, mapping, kernel, out + std::size_t(c) * frame_plane, x, int(y));
+          }
+        };
         const vec2 from = mapping.center + mapping.scale * (p - mapping.center) + w;  // where its light came from
-        if (touches_medium(depth, channels_, frame_width_, frame_height_, from)) continue;
-        const vec2 texel = g.texel_of(p);
-        if (least_around(age, g.width, g.height, texel) < float(min_age_)) continue;
+        if (medium.touches(from)) {
+          resampled();
+          continue;
+        }
+        // The four texels a bilinear read at p takes (clamp-to-edge): all
+        // clear of any medium for min_age slabs, or the re-sampled light.
+        const vec2 f = g.texel_of(p) - vec2(0.5f);
+        const float fx0 = std::floor(f.x), fy0 = std::floor(f.y);
+        const float tx = f.x - fx0, ty = f.y - fy0;
+        const int x0 = glm::clamp(int(fx0), 0, g.width - 1), x1 = glm::clamp(int(fx0) + 1, 0, g.width - 1);
+        const std::size_t r0 = std::size_t(g.width) * std::size_t(glm::clamp(int(fy0), 0, g.height - 1));
+        const std::size_t r1 = std::size_t(g.width) * std::size_t(glm::clamp(int(fy0) + 1, 0, g.height - 1));
+        const std::size_t i00 = r0 + std::size_t(x0), i10 = r0 + std::size_t(x1), i01 = r1 + std::size_t(x0),
+                          i11 = r1 + std::size_t(x1);
+        if (glm::max(glm::max(touched[i00], touched[i10]), glm::max(touched[i01], touched[i11])) > clear_since) {
+          resampled();
+          continue;
+        }
         for (int c = 0; c < channels_; ++c) {
-          incoming[std::size_t(c) * frame_plane + std::size_t(x) + std::size_t(frame_width_) * std::size_t(y)] =
-              read_buffer(t + std::size_t(c) * plane, g.width, g.height, texel);
+          const float* v = t + std::size_t(c) * plane;
+          incoming[std::size_t(c) * frame_plane + i] =
+              (1.0f - ty) * ((1.0f - tx) * v[i00] + tx * v[i10]) + ty * ((1.0f - tx) * v[i01] + tx * v[i11]);
         }
         ++count;
       }

@@ -39,7 +39,7 @@
 // column.
 //
 // Two re-bases keep the grid over the frame: an integer shift of the texels
-// (an exact copy) whenever |offset| passes half a texel, so the grid follows
+// (an exact copy) whenever |offset| passes a few texels, so the grid follows
 // light that drifts sideways; and a re-sampling onto the pixel grid when a
 // perspective camera has shrunk it (scale = z_0 / z_k) below the scale it was
 // sized for (at most one per halving of scale; never with an orthographic
@@ -48,12 +48,14 @@
 #include "penumbra/base/math.h"
 #include "penumbra/techniques/convolution/light_propagation.h"
 
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
 namespace penumbra {
 
 struct CarriedGrid {
+  static constexpr int kShiftTexels = 4;  // the offset a grid runs up before an integer shift
   int width = 0, height = 0;  // texels
   vec2 center{0.0f};          // the frame's centre c, pixel coordinates
   vec2 grid_center{0.0f};     // g_c, texel coordinates
@@ -77,18 +79,36 @@ CarriedGrid carried_grid(int frame_width, int frame_height, float min_scale);
 void advance_carried_grid(CarriedGrid& grid, const SlabMapping& mapping, vec2 w);
 
 // Re-bases (each copies `planes` planes of width x height texels from `from`
-// to `to`). The integer shift n that brings the offset within half a texel,
-// applied (texel x of the new grid is texel x + n of the old); ivec2(0) when
-// none is needed, and then `to` is not written.
+// to `to`). Once the offset passes kShiftTexels texels on an axis, the
+// integer shift n that brings it within half a texel, applied (texel x of the
+// new grid is texel x + n of the old); ivec2(0) when none is needed, and then
+// `to` is not written.
 ivec2 shift_carried_grid(CarriedGrid& grid, const float* from, float* to, int planes);
 // Onto the pixel grid (scale 1, no offset), re-sampled with the clamped
 // Catmull-Rom read of single-tap slab steps.
 void resample_carried_grid(CarriedGrid& grid, const float* from, float* to, int planes);
 
-// Whether any of the four pixels around frame position p (pixel centres at
-// +0.5; clamp-to-edge) has optical depth in `depth` (`channels` values per
-// pixel).
-bool touches_medium(const float* depth, int channels, int frame_width, int frame_height, vec2 p);
+// Which frame positions have a medium among the four pixels a bilinear read
+// there takes (clamp-to-edge), for one slab: the slab loop flags the pixels
+// where the slab has optical depth, build() dilates the flags once per slab,
+// and a query is one lookup.
+class MediumMask {
+ public:
+  void resize(int frame_width, int frame_height);  // all clear
+  std::uint8_t* flags() { return any_.data(); }     // per pixel: 1 where the slab has a medium
+  void build();
+  // p in frame pixel coordinates, pixel centres at +0.5.
+  bool touches(vec2 p) const {
+    const int x0 = int(std::floor(glm::clamp(p.x - 0.5f, -1.0f, float(width_ - 1))));
+    const int y0 = int(std::floor(glm::clamp(p.y - 0.5f, -1.0f, float(height_ - 1))));
+    return mask_[std::size_t(x0 + 1) + std::size_t(width_ + 1) * std::size_t(y0 + 1)] != 0;
+  }
+
+ private:
+  int width_ = 0, height_ = 0;
+  std::vector<std::uint8_t> any_;   // the flags
+  std::vector<std::uint8_t> mask_;  // (width + 1) x (height + 1): entry (x0 + 1, y0 + 1) for pixels x0..x0+1, y0..y0+1
+};
 
 // The carried grids of one frame's zero-variance lights.
 class CarriedLights {
@@ -102,23 +122,26 @@ class CarriedLights {
   const CarriedGrid& grid(int l) const { return grids_[std::size_t(l)]; }
 
   // Slab k > 0, light l: `out` is the light leaving slab k - 1 on the pixel
-  // grid (`channels` planes of frame pixels) and `depth` that slab's optical
-  // depths (`channels` per pixel). Texels whose crossing of slab k - 1
+  // grid (`channels` planes of frame pixels) and `medium` that slab's mask.
+  // Texels whose crossing of slab k - 1
   // touched the medium take their light from `out`; then the grid follows
   // its rays into slab k (`mapping`, w: convolve_texel_mapped's).
-  void advance(int l, const float* out, const float* depth, const SlabMapping& mapping, vec2 w);
-  // Then, into `incoming` (the light entering slab k, re-sampled from `out`):
-  // the carried light at every pixel whose light crossed no medium in slab
-  // k - 1. Returns the number of such pixels.
-  std::uint64_t fill_free_pixels(int l, float* incoming, const float* depth, const SlabMapping& mapping,
-                                 vec2 w) const;
+  void advance(int l, const float* out, const MediumMask& medium, const SlabMapping& mapping, vec2 w);
+  // Then the light entering slab k at every pixel, into `incoming`
+  // (`channels` planes): the carried light where it crossed no medium in
+  // slab k - 1 (and the texels read have been clear for `min_age` slabs),
+  // elsewhere `out` re-sampled by the slab step (convolve_texel_mapped with
+  // the single-tap `kernel`, as convolve_slab). Returns the number of pixels
+  // that took the carried light.
+  std::uint64_t propagate(int l, const SlabFrame& frame, const SlabKernel& kernel, const float* out, float* incoming,
+                          const MediumMask& medium, const SlabMapping& mapping, vec2 w) const;
 
   std::uint64_t bytes() const { return texels_.size() * sizeof(float); }
-  static constexpr float kNeverTouched = 1e6f;
+  static constexpr float kNeverTouched = -1e6f;  // the step a texel that never touched a medium touched it
 
  private:
-  // `channels_` planes of light, then one of each texel's age: the slabs
-  // since it last touched a medium (re-bases copy it with the light).
+  // `channels_` planes of light, then one of the step (advance) at which each
+  // texel last touched a medium (re-bases copy it with the light).
   float* texels(int l, int half);
 
   int frame_width_ = 0, frame_height_ = 0, channels_ = 1, min_age_ = 1;
@@ -126,6 +149,7 @@ class CarriedLights {
   std::vector<char> carried_;
   std::vector<CarriedGrid> grids_;
   std::vector<int> half_;               // which half of each light's pair holds its texels
+  std::vector<int> steps_;              // per light, advances so far
   std::vector<std::size_t> base_;       // per light, its pair's first float
   std::vector<float> texels_;
 };

@@ -256,7 +256,7 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
   float min_scale = 1.0f;
   if (!cam.orthographic && slabs > 1) {
     const float z_first = z_front + 0.5f * e, z_last = z_front + (float(slabs) - 0.5f) * e;
-    min_scale = 0.98f * glm::clamp(z_first / z_last, 0.5f, 1.0f);
+    min_scale = 0.98f * glm::clamp(z_first / z_last, 0.9f, 1.0f);
   }
   if (any_carried) {
     const CarriedGrid g = carried_grid(width, height, min_scale);
@@ -276,9 +276,10 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
   }
   const int clear_slabs = drift * float(kMaxClearSlabs) > 1.0f ? int(std::ceil(1.0f / drift)) : kMaxClearSlabs;
   carried_.start(width, height, channels, min_scale, clear_slabs, carried);
-  // Each pixel's optical depth per unit light path in the last slab (what the
-  // carried grids test for medium).
-  std::vector<float> slab_depth(any_carried ? pixels * std::size_t(channels) : 0, 0.0f);
+  // Where the last slab has a medium (what the carried grids test).
+  MediumMask medium;
+  if (any_carried) medium.resize(width, height);
+  std::uint8_t* const has_medium = any_carried ? medium.flags() : nullptr;
   const SlabFrame frame{cam, width, height, e};
   const float min_transmittance = 1.0f - view.ert_threshold;
   const bool separate_shadow_tf = scene.shadow_transfer_function().has_value();
@@ -314,17 +315,19 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
       const float z = z_front + (float(k) + 0.5f) * e;
       const float z0 = z - 0.5f * e, z1 = z + 0.5f * e;
       const int next = 1 - current;
+      if (any_carried && k > 0) medium.build();
       for (int l = 0; l < light_count; ++l) {
         if (k == 0) continue;  // buffers start unoccluded
         const SlabKernel kernel = kernels[std::size_t(l)].for_slab(k);
-        for (int c = 0; c < channels; ++c) convolve_slab(frame, kernel, buffer(l, current, c), buffer(l, next, c), z);
         if (carried[std::size_t(l)]) {
           const SlabMapping m = slab_mapping(frame, z);
           const vec2 o = kernel.offset(0, 1.0f, 0.0f);
           const vec2 w = m.pixels_per_unit * vec2(-o.x, o.y);
-          carried_.advance(l, buffer(l, current), slab_depth.data(), m, w);
-          carried_.fill_free_pixels(l, buffer(l, next), slab_depth.data(), m, w);
+          carried_.advance(l, buffer(l, current), medium, m, w);
+          carried_.propagate(l, frame, kernel, buffer(l, current), buffer(l, next), medium, m, w);
+          continue;
         }
+        for (int c = 0; c < channels; ++c) convolve_slab(frame, kernel, buffer(l, current, c), buffer(l, next, c), z);
       }
       if (k > 0) current = next;
       parallel_for(0, height, [&](std::int64_t first, std::int64_t last) {
@@ -335,7 +338,7 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
           for (int x = 0; x < width; ++x) {
             const std::size_t i = std::size_t(x) + std::size_t(width) * std::size_t(y);
             PixelState& p = px[i];
-            if (any_carried) std::fill_n(slab_depth.data() + i * std::size_t(channels), channels, 0.0f);
+            if (has_medium) has_medium[i] = 0;
             if (p.done) continue;  // behind an opaque plane: nothing of this pixel is left to see or to shadow
             const bool plane_here = p.plane >= 0 && p.z_plane < z1;
             const bool shading = !p.guard && p.transmittance > min_transmittance;
@@ -474,7 +477,7 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
             }
             // (4) the light leaving this slab toward the next.
             const vec3 optical_depth = volume_shadow + mesh_shadow;
-            if (any_carried) std::copy_n(&optical_depth[0], channels, slab_depth.data() + i * std::size_t(channels));
+            if (has_medium) has_medium[i] = max_component(optical_depth) > 0.0f;
             if (max_component(optical_depth) > 0.0f) {
               for (int l = 0; l < light_count; ++l) {
                 for (int c = 0; c < channels; ++c) {
