@@ -247,7 +247,8 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
   // Zero-variance lights are also carried along their rays across empty
   // space (carried_light.h), on grids that cover the frame down to the
   // smallest scale a perspective camera gives them over the slabs (z_first /
-  // z_last, at least 1/2: below that they are re-sampled onto the pixel grid).
+  // z_last, at least 0.9: below that they are re-sampled onto the pixel grid,
+  // which keeps a grid at 1.23x the frame's texels).
   std::vector<char> carried(static_cast<std::size_t>(light_count), 0);
   for (int l = 0; l < light_count; ++l) {
     carried[std::size_t(l)] = settings_.carried_light && kernels[std::size_t(l)].sample_count() == 1;
