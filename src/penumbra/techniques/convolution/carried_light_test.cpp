@@ -24,6 +24,17 @@ SlabFrame perspective_frame(bool orthographic = false) {
 
 // The light's lateral step per slab in world units (a tilted light).
 const vec2 kTap(0.05f, -0.03f);
+const float kUnitWeight = 1.0f;
+
+// The zero-variance light's slab kernel: the one tap kTap.
+SlabKernel single_tap_kernel() {
+  SlabKernel k;
+  k.taps = &kTap;
+  k.weights = &kUnitWeight;
+  k.count = 1;
+  k.mean = kTap;
+  return k;
+}
 
 struct Carried {
   CarriedGrid grid;
@@ -115,13 +126,7 @@ TEST(CarriedLight, AnEdgeRidesTheComposedSlabMapsUnblurred) {
     std::vector<float> a(std::size_t(kW * kH)), b(a.size());
     for (int y = 0; y < kH; ++y)
       for (int x = 0; x < kW; ++x) a[std::size_t(x + kW * y)] = float(x) + 0.5f < 21.0f ? 0.0f : 1.0f;
-    const vec2 tap = kTap;
-    const float weight = 1.0f;
-    SlabKernel k;
-    k.taps = &tap;
-    k.weights = &weight;
-    k.count = 1;
-    k.mean = tap;
+    const SlabKernel k = single_tap_kernel();
     for (int s = 1; s <= slabs; ++s) {
       convolve_slab(f, k, a.data(), b.data(), z0 + float(s) * f.slab_distance);
       a.swap(b);
@@ -191,13 +196,8 @@ MiniLoop mini_loop(bool carry, float haze) {
   const SlabFrame f = perspective_frame(true);
   const std::size_t pixels = std::size_t(kW * kH);
   std::vector<float> a(pixels, 1.0f), b(pixels), depth(pixels, 0.0f);
+  const SlabKernel k = single_tap_kernel();
   const vec2 tap = kTap;
-  const float weight = 1.0f;
-  SlabKernel k;
-  k.taps = &tap;
-  k.weights = &weight;
-  k.count = 1;
-  k.mean = tap;
   CarriedLights carried;
   carried.start(kW, kH, 1, 1.0f, 13, {char(carry)});  // 13: a pixel at 0.08 px per slab
   MiniLoop out;
