@@ -76,6 +76,39 @@ TEST(Math, LogPositiveMatchesStdLog) {
   EXPECT_EQ(log_positive(1.0f), 0.0f);
 }
 
+TEST(Math, Log2AndExp2MatchStd) {
+  double worst_log = 0.0, worst_exp = 0.0;
+  for (float x = 1e-20f; x < 1e20f; x *= 1.0137f) {
+    const double expected = std::log2(double(x));
+    worst_log = std::max(worst_log, std::abs(log2_positive(x) - expected) / std::max(1.0, std::abs(expected)));
+  }
+  for (float x = 0.0f; x < 100.0f; x += 0.0173f) {
+    const double expected = std::exp2(double(x));
+    worst_exp = std::max(worst_exp, std::abs(exp2_nonnegative(x) - expected) / expected);
+  }
+  EXPECT_LT(worst_log, 1e-6);
+  EXPECT_LT(worst_exp, 5e-7);
+  // Powers of two are exact both ways (occlusion-map's whole pyramid levels).
+  for (int e = -20; e <= 20; ++e) EXPECT_EQ(log2_positive(std::ldexp(1.0f, e)), float(e));
+  for (int e = 0; e <= 20; ++e) EXPECT_EQ(exp2_nonnegative(float(e)), std::ldexp(1.0f, e));
+}
+
+TEST(Math, ErfcLanesMatchesStdErfc) {
+  // Relative error up to 4 (where occlusion-map uses it), and beyond, where
+  // float's rounding of x^2 in the exponent sets it (about x^2 6e-8).
+  double worst = 0.0, worst_tail = 0.0;
+  for (float x = -6.0f; x < 9.0f; x += 0.00731f) {
+    const double expected = std::erfc(double(x));
+    const double error = std::abs(erfc_lanes(x) - expected) / expected;
+    (x <= 4.0f ? worst : worst_tail) = std::max(x <= 4.0f ? worst : worst_tail, error);
+  }
+  std::printf("[math] erfc_lanes worst relative error %.2e to 4, %.2e beyond\n", worst, worst_tail);
+  EXPECT_LT(worst, 2e-6);
+  EXPECT_LT(worst_tail, 8e-6);
+  EXPECT_EQ(erfc_lanes(-20.0f), 2.0f);
+  EXPECT_EQ(erfc_lanes(20.0f), 0.0f);
+}
+
 TEST(Math, PowUnitMatchesStdPowForHighlights) {
   // Whole shininess takes repeated squaring, the rest exp(s ln x).
   for (float s : {1.0f, 2.0f, 5.0f, 20.0f, 128.0f, 255.0f, 256.0f, 0.5f, 7.5f, 33.3f, 300.0f}) {

@@ -43,6 +43,49 @@ template <class F> PENUMBRA_HD PENUMBRA_FORCE_INLINE F log_positive(F x) {
   return to_float(e) * 0.693147180559945f + series;
 }
 
+// log2(x) for finite x > 0: log_positive's reduction with the exponent kept
+// exact, so a power of two gives its exponent exactly.
+template <class F> PENUMBRA_HD PENUMBRA_FORCE_INLINE F log2_positive(F x) {
+  const auto bits = bits_of(x);
+  auto e = ((bits >> 23) & 0xff) - 127;
+  F m = float_from_bits((bits & 0x007fffff) | 0x3f800000);
+  const auto high = m > 1.41421356f;
+  m = select(high, m * 0.5f, m);
+  e = select(high, e + 1, e);
+  const F z = (m - 1.0f) / (m + 1.0f);
+  const F z2 = z * z;
+  const F series = 2.0f * z * (1.0f + z2 * (1.0f / 3.0f + z2 * (1.0f / 5.0f + z2 * (1.0f / 7.0f + z2 * (1.0f / 9.0f)))));
+  return to_float(e) + series * 1.44269504088896341f;
+}
+
+// 2^x for x >= 0 below 128: the whole part built into the exponent bits, the
+// fraction through exp_nonpositive (2^f = 2 e^((f - 1) ln 2)).
+template <class F> PENUMBRA_HD PENUMBRA_FORCE_INLINE F exp2_nonnegative(F x) {
+  const auto whole = to_int(x);  // truncation: x >= 0
+  const F fraction = x - to_float(whole);
+  const F power = float_from_bits((whole + 127) << 23);
+  return select(fraction > 0.0f, power * (2.0f * exp_nonpositive((fraction - 1.0f) * 0.693147180559945f)), power);
+}
+
+// erfc(x), to about 1.2e-7 relative everywhere: the Chebyshev fit of
+// t exp(-x^2 + P(t)), t = 1 / (1 + |x| / 2), of Press et al., Numerical
+// Recipes in C, 2nd ed., section 6.2 (their erfcc; the coefficients are
+// theirs), and erfc(-x) = 2 - erfc(x). Inline and branch-free, for
+// occlusion-map's per-step shares on every lane type.
+template <class F> PENUMBRA_HD PENUMBRA_FORCE_INLINE F erfc_lanes(F x) {
+  const F z = max(x, -x);
+  const F t = 1.0f / (1.0f + 0.5f * z);
+  const F p =
+      -1.26551223f +
+      t * (1.00002368f +
+           t * (0.37409196f +
+                t * (0.09678418f +
+                     t * (-0.18628806f +
+                          t * (0.27886807f + t * (-1.13520398f + t * (1.48851587f + t * (-0.82215223f + t * 0.17087277f))))))));
+  const F tail = t * exp_nonpositive(min(p - z * z, F(0.0f)));
+  return select(x >= 0.0f, tail, 2.0f - tail);
+}
+
 // x^s for x in [0, 1] and s >= 0 (a specular highlight); 0^s = 0 for s > 0
 // and x^0 = 1. A whole s up to 256 (the usual shininess) takes repeated
 // squaring, at most 16 products in place of a log and an exp; a power below

@@ -15,7 +15,8 @@
 namespace penumbra {
 
 template <int K, class Sampler>
-PENUMBRA_HD vec4 isosurface_pixel(const IsosurfaceShader<K, Sampler>& shader, const Ray& ray, std::uint64_t& samples) {
+PENUMBRA_HD vec4 isosurface_pixel(const IsosurfaceShader<K, Sampler>& shader, const Ray& ray, std::uint64_t& samples,
+                                  SoftShadowQueries* deferred = nullptr) {
   const RenderView& v = *shader.setup->iso_view;
   float t_plane = kInfinity;
   const int plane = nearest_plane(v, ray, kInfinity, t_plane);
@@ -23,8 +24,8 @@ PENUMBRA_HD vec4 isosurface_pixel(const IsosurfaceShader<K, Sampler>& shader, co
   const float t = interval.empty()
                       ? kInfinity
                       : first_iso_crossing(v, shader.sampler, ray, interval, shader.setup->iso, samples);
-  if (t < kInfinity) return vec4(shader.surface(ray.at(t), ray.direction), 1.0f);
-  if (plane >= 0) return vec4(shader.plane(PlaneHit{ray.at(t_plane), plane, ray.direction}), 1.0f);
+  if (t < kInfinity) return vec4(shader.surface(ray.at(t), ray.direction, deferred), 1.0f);
+  if (plane >= 0) return vec4(shader.plane(PlaneHit{ray.at(t_plane), plane, ray.direction}, deferred), 1.0f);
   return vec4(v.background, 0.0f);
 }
 
@@ -44,6 +45,50 @@ PENUMBRA_HD std::uint64_t isosurface_pixel_at(const IsosurfaceShader<K, Sampler>
 // backend (occlusion_map_device.cu), for K = 2 and 4.
 template <int K> std::uint64_t render_isosurface_device(const OcclusionShadingSetup<K>& setup, Image& image);
 
+// The soft-shadow march of `target` (soft_shadow_batch.h), or nullptr where
+// this build has none. (Not in soft_shadow_batch.h: a SIMD unit must not
+// instantiate the other target's march.)
+inline SoftShadowMarch soft_shadow_march(SimdTarget target) {
+  switch (target) {
+#if defined(PENUMBRA_SIMD_AVX3)
+    case SimdTarget::Avx3: return &march_soft_shadows<SimdTarget::Avx3>;
+#endif
+#if defined(PENUMBRA_SIMD_AVX2)
+    case SimdTarget::Avx2: return &march_soft_shadows<SimdTarget::Avx2>;
+#endif
+    default: return nullptr;
+  }
+}
+
+// One tile with its soft shadows marched as packets (soft_shadow_batch.h):
+// the pixels shaded with their marches recorded, the marches run by `march`,
+// each light's share added back scaled by its visibility.
+template <class Sampler>
+std::uint64_t render_isosurface_tile_packets(const IsosurfaceShader<2, Sampler>& shader, SoftShadowMarch march,
+                                             Image& image, int x0, int y0, int x1, int y1) {
+  const OcclusionShadingSetup<2>& setup = *shader.setup;
+  const RenderView& v = *setup.iso_view;
+  SoftShadowBatch batch((x1 - x0) * (y1 - y0), v.light_count);
+  SoftShadowQueries queries = batch.queries();
+  std::uint64_t samples = 0;
+  for (int y = y0; y < y1; ++y) {
+    for (int x = x0; x < x1; ++x) {
+      queries.pixel = y * v.width + x;
+      const Ray ray = v.camera.pixel_ray(float(x) + 0.5f, float(y) + 0.5f, v.width, v.height);
+      image.at(x, y) = isosurface_pixel(shader, ray, samples, &queries);
+    }
+  }
+  SoftShadowBatch::pad(queries);
+  march(setup.queries, setup.normalise(setup.iso), queries, batch.visibility());
+  const float* visibility = batch.visibility();
+  for (int i = 0; i < queries.count; ++i) {
+    const int pixel = queries.pixels[i];
+    vec4& out = image.at(pixel % v.width, pixel / v.width);
+    out += vec4(queries.shares[i] * visibility[i], 0.0f);
+  }
+  return samples;
+}
+
 template <int K>
 void render_isosurface_image(const OcclusionShadingSetup<K>& setup, Image& image, RenderStats* stats) {
   const RenderView& v = *setup.iso_view;
@@ -59,11 +104,28 @@ void render_isosurface_image(const OcclusionShadingSetup<K>& setup, Image& image
     return;
   }
 #endif
+  // Soft shadows (two moments) march as packets where this CPU has them.
+  SimdTarget simd = SimdTarget::Scalar;
+  SoftShadowMarch march = nullptr;
+  if constexpr (K == 2) {
+    if (setup.shadows == ShadowMode::Soft && setup.queries.packets_fit()) {
+      simd = active_simd_target();
+      march = soft_shadow_march(simd);
+      if (!march) simd = SimdTarget::Scalar;
+    }
+  }
   std::atomic<std::uint64_t> total_samples{0};
   with_sampler(v.volume, [&](const auto& sampler) {
     const IsosurfaceShader<K, std::decay_t<decltype(sampler)>> shader{&setup, sampler};
     parallel_for_tiles(v.width, v.height, 16, [&](int x0, int y0, int x1, int y1) {
       std::uint64_t samples = 0;
+      if constexpr (K == 2) {
+        if (march) {
+          total_samples.fetch_add(render_isosurface_tile_packets(shader, march, image, x0, y0, x1, y1),
+                                  std::memory_order_relaxed);
+          return;
+        }
+      }
       for (int y = y0; y < y1; ++y) {
         for (int x = x0; x < x1; ++x) samples += isosurface_pixel_at(shader, image.data(), x, y);
       }
@@ -72,6 +134,7 @@ void render_isosurface_image(const OcclusionShadingSetup<K>& setup, Image& image
     return 0;
   });
   if (stats) {
+    stats->simd = simd;
     stats->samples += total_samples.load();
     stats->rays += std::uint64_t(v.width) * std::uint64_t(v.height);
   }

@@ -27,6 +27,23 @@ struct MomentLevelView {
   vec3 scale{0.0f};  // level nodes per world unit, per axis
 };
 
+// Calls fn(k, lanes) once for each level k that some lane of `mask` holds in
+// `level`, with the mask of those lanes (a packet's lanes may march at
+// different levels; a scalar lane makes one call).
+template <class L, class Fn>
+PENUMBRA_HD PENUMBRA_FORCE_INLINE void for_each_level(typename L::Int level, typename L::Mask mask, Fn&& fn) {
+  if constexpr (L::kWidth == 1) {
+    if (mask) fn(int(level), mask);
+  } else {
+    for (int k = 0; k < kMaxMomentLevels && any(mask); ++k) {
+      const typename L::Mask at = mask & (level == typename L::Int(k));
+      if (none(at)) continue;
+      fn(k, at);
+      mask = mask & !at;
+    }
+  }
+}
+
 template <int K> struct MomentPyramidView {
   static_assert(K == 2 || K == 4, "two or four moments");
   using Moments = glm::vec<K, float, glm::defaultp>;
@@ -52,20 +69,65 @@ template <int K> struct MomentPyramidView {
   // The same at a whole level, without exp2 (exact: 2^level is a power of two).
   PENUMBRA_HD float sigma_at(int level) const { return sigma0 * float(1 << level); }
 
-  PENUMBRA_HD Moments sample(int level, vec3 world) const {
+  // Level `level`'s trilinear moments at `world`, on any lane type (the
+  // level is the same for every lane; positions outside the grid clamp to
+  // its edge, so every lane reads inside it).
+  template <class L>
+  PENUMBRA_HD PENUMBRA_FORCE_INLINE void sample_at(int level, const typename L::Vec3& world,
+                                                   typename L::Float (&out)[K]) const {
+    using F = typename L::Float;
+    using I = typename L::Index;
     const MomentLevelView& l = levels[level < 0 ? 0 : (level >= level_count ? level_count - 1 : level)];
-    const vec3 p = glm::clamp((world - origin) * l.scale, vec3(0.0f), vec3(l.dims - 1));
-    const ivec3 i0 = glm::min(ivec3(p), glm::max(l.dims - 2, ivec3(0)));
-    const vec3 f = glm::min(p - vec3(i0), vec3(1.0f));
-    const long sx = l.dims.x > 1 ? K : 0;
-    const long sy = l.dims.y > 1 ? long(l.dims.x) * K : 0;
-    const long sz = l.dims.z > 1 ? long(l.dims.x) * l.dims.y * K : 0;
-    const float* c = l.texels + (i0.x + long(l.dims.x) * (i0.y + long(l.dims.y) * i0.z)) * K;
-    const Moments x00 = glm::mix(load(c), load(c + sx), f.x);
-    const Moments x10 = glm::mix(load(c + sy), load(c + sx + sy), f.x);
-    const Moments x01 = glm::mix(load(c + sz), load(c + sx + sz), f.x);
-    const Moments x11 = glm::mix(load(c + sy + sz), load(c + sx + sy + sz), f.x);
-    return glm::mix(glm::mix(x00, x10, f.y), glm::mix(x01, x11, f.y), f.z);
+    I node(0);
+    I stride[3];
+    F frac[3];
+    long axis_stride = K;
+    for (int a = 0; a < 3; ++a) {
+      const F p = clamp((world[a] - origin[a]) * l.scale[a], F(0.0f), F(float(l.dims[a] - 1)));
+      const auto i0 = min(to_int_nonnegative(p), typename L::Int(l.dims[a] > 1 ? l.dims[a] - 2 : 0));
+      frac[a] = min(p - to_float(i0), F(1.0f));
+      node = node + I(i0) * I(axis_stride);
+      stride[a] = I(l.dims[a] > 1 ? axis_stride : 0);
+      axis_stride *= l.dims[a];
+    }
+    for (int k = 0; k < K; ++k) {
+      const I c = node + I(k);
+      const F x00 = lerp<F>(gather(l.texels, c), gather(l.texels, c + stride[0]), frac[0]);
+      const F x10 = lerp<F>(gather(l.texels, c + stride[1]), gather(l.texels, c + stride[0] + stride[1]), frac[0]);
+      const F x01 = lerp<F>(gather(l.texels, c + stride[2]), gather(l.texels, c + stride[0] + stride[2]), frac[0]);
+      const F x11 = lerp<F>(gather(l.texels, c + stride[1] + stride[2]),
+                            gather(l.texels, c + stride[0] + stride[1] + stride[2]), frac[0]);
+      out[k] = lerp<F>(lerp<F>(x00, x10, frac[1]), lerp<F>(x01, x11, frac[1]), frac[2]);
+    }
+  }
+
+  PENUMBRA_HD Moments sample(int level, vec3 world) const {
+    float m[K];
+    sample_at<ScalarLanes>(level, world, m);
+    Moments r;
+    for (int i = 0; i < K; ++i) r[i] = m[i];
+    return r;
+  }
+
+  // The nearest node's maximum at a whole level, on any lane type.
+  template <class L>
+  PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Float maximum_at(int level, const typename L::Vec3& world) const {
+    using F = typename L::Float;
+    using I = typename L::Index;
+    const MomentLevelView& l = levels[level < 0 ? 0 : (level >= level_count ? level_count - 1 : level)];
+    I node(0);
+    long axis_stride = 1;
+    for (int a = 0; a < 3; ++a) {
+      // Rounded to the nearest node, halves up (the coordinates are clamped
+      // to >= 0 first, where that is roundf's rounding, without its call).
+      const F p = clamp((world[a] - origin[a]) * l.scale[a], F(0.0f), F(float(l.dims[a] - 1)));
+      auto i = to_int_nonnegative(p);
+      i = select(p - to_float(i) >= 0.5f, i + 1, i);
+      i = min(i, typename L::Int(l.dims[a] - 1));
+      node = node + I(i) * I(axis_stride);
+      axis_stride *= l.dims[a];
+    }
+    return load_voxel(l.maxima, node, std::int64_t(axis_stride)) * (1.0f / float(kMaximumSteps));
   }
 
   // The largest u anywhere in the box of half-width kMaximumRadiusSigmas
@@ -74,14 +136,7 @@ template <int K> struct MomentPyramidView {
   PENUMBRA_HD float maximum(float level, vec3 world) const {
     const float top = float(level_count - 1);
     level = level < 0.0f ? 0.0f : (level > top ? top : level);
-    const MomentLevelView& l = levels[int(glm::ceil(level))];
-    // Rounded to the nearest node, halves up (the coordinates are clamped
-    // to >= 0 first, where that is roundf's rounding, without its call).
-    const vec3 p = glm::clamp((world - origin) * l.scale, vec3(0.0f), vec3(l.dims - 1));
-    ivec3 i(p);
-    i += ivec3(glm::greaterThanEqual(p - vec3(i), vec3(0.5f)));
-    i = glm::min(i, l.dims - 1);
-    return float(l.maxima[i.x + long(l.dims.x) * (i.y + long(l.dims.y) * i.z)]) * (1.0f / float(kMaximumSteps));
+    return maximum_at<ScalarLanes>(int(glm::ceil(level)), world);
   }
 
   // A fractional level: the moments of the two nearest levels, mixed.
@@ -95,11 +150,8 @@ template <int K> struct MomentPyramidView {
   }
 
  private:
-  PENUMBRA_HD static Moments load(const float* p) {
-    Moments m;
-    for (int i = 0; i < K; ++i) m[i] = p[i];
-    return m;
-  }
+  // glm::mix's form, a (1 - f) + b f, on any lane type.
+  template <class F> PENUMBRA_HD PENUMBRA_FORCE_INLINE static F lerp(F a, F b, F f) { return a * (1.0f - f) + b * f; }
 };
 
 }  // namespace penumbra

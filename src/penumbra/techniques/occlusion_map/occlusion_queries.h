@@ -65,27 +65,42 @@ template <int K> struct OcclusionQueries {
   float default_spread = 0.0f;  // tan(angular radius) for lights without a size
   float forced_spread = -1.0f;  // >= 0: the tan(angular radius) of every light (an explicit light_size_deg)
 
+  // Whether packets' 32-bit gather offsets reach every node of the pyramid
+  // (level 0 is the largest).
+  bool packets_fit() const {
+    if (pyramid.level_count < 1) return false;
+    const ivec3 d = pyramid.levels[0].dims;
+    return std::uint64_t(d.x) * std::uint64_t(d.y) * std::uint64_t(d.z) * K < (std::uint64_t(1) << 31) - 64;
+  }
+
   // Share of a Gaussian region (centre c, standard deviation sigma) inside
   // the volume's box. Outside the box there is nothing, so the occlusion of a
   // region is its inside part's (what the pyramid's edge-renormalised nodes,
   // nearest to c, hold) times this share. Without it a region out past the
   // border would see the border voxels' region, and a surface facing out of
   // the volume would be occluded by what lies behind it.
-  PENUMBRA_HD float inside_share(vec3 c, float sigma) const {
-    const float scale = 1.0f / (glm::sqrt(2.0f) * sigma);
-    float share = 1.0f;
+  template <class L>
+  PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Float inside_share_lanes(const typename L::Vec3& c,
+                                                                        typename L::Float sigma) const {
+    using F = typename L::Float;
+    const F scale = 1.0f / (1.41421356f * sigma);
+    F share(1.0f);
+    typename L::Mask outside(false);
     for (int a = 0; a < 3; ++a) {
-      // erf is exactly +-1 in float beyond 4 (1 - erf(4) = 1.5e-8), so an
+      // The share along an axis is (erf(above) - erf(below)) / 2, i.e.
+      // (erfc(below) - erfc(above)) / 2. erf is exactly +-1 in float beyond 4 (1 - erf(4) = 1.5e-8), so an
       // axis along which the centre lies more than 4 / scale inside both
       // faces contributes exactly 1 and one that far outside a face exactly
       // 0, without the erf calls (most samples of a march lie inside).
-      const float above = (box.upper[a] - c[a]) * scale, below = (box.lower[a] - c[a]) * scale;
-      if (above < -4.0f || below > 4.0f) return 0.0f;
-      if (above > 4.0f && below < -4.0f) continue;
-      share *= 0.5f * (std::erf(above) - std::erf(below));
+      const F above = (box.upper[a] - c[a]) * scale, below = (box.lower[a] - c[a]) * scale;
+      outside = outside | (above < -4.0f) | (below > 4.0f);
+      const auto inner = (above > 4.0f) & (below < -4.0f);
+      if (all(inner | outside)) continue;
+      share = select(inner, share, share * (0.5f * (erfc_lanes(below) - erfc_lanes(above))));
     }
-    return glm::clamp(share, 0.0f, 1.0f);
+    return select(outside, F(0.0f), clamp(share, F(0.0f), F(1.0f)));
   }
+  PENUMBRA_HD float inside_share(vec3 c, float sigma) const { return inside_share_lanes<ScalarLanes>(c, sigma); }
 
   // Occluded fraction of level `level`'s region around c for query t: the
   // bound from its moments, and none where the region's maximum stays below
@@ -118,29 +133,67 @@ template <int K> struct OcclusionQueries {
   }
   // The same with the level's sigma given.
   PENUMBRA_HD float shadow_occlusion(float level, float sigma, vec3 c, float t, float own, float u_own) const {
-    using Moments = typename MomentPyramidView<K>::Moments;
-    const float top = pyramid.maximum(level, c);
-    if (top < t) return 0.0f;
-    Moments m = pyramid.sample(level, c);
-    if (own > 1e-4f) {
-      const float keep = glm::max(1.0f - own, 1e-3f);
-      const float u = glm::max(u_own, top);
-      float power = u;
-      for (int i = 0; i < K; ++i) {
-        m[i] = glm::max(m[i] - own * power, 0.0f) / keep;
-        power *= u;
+    return shadow_occlusion_lanes<ScalarLanes>(level, sigma, c, t, own, u_own, true);
+  }
+  // The same on any lane type, each lane at its own (fractional) level; 0 on
+  // lanes that are off. Four moments only on ScalarLanes.
+  template <class L>
+  PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Float shadow_occlusion_lanes(typename L::Float level,
+                                                                            typename L::Float sigma,
+                                                                            const typename L::Vec3& c, float t,
+                                                                            typename L::Float own,
+                                                                            typename L::Float u_own,
+                                                                            typename L::Mask active) const {
+    using F = typename L::Float;
+    using M = typename L::Mask;
+    const float highest = float(pyramid.level_count - 1);
+    level = clamp(level, F(0.0f), F(highest));
+    const auto whole = to_int_nonnegative(level);
+    const M fractional = level > to_float(whole);
+    // The maximum of the coarser of the two levels.
+    const auto coarser = select(fractional, whole + 1, whole);
+    F top(0.0f);
+    for_each_level<L>(coarser, active, [&](int k, M mk) { top = select(mk, pyramid.template maximum_at<L>(k, c), top); });
+    const M occluding = active & (top >= t);
+    if (none(occluding)) return F(0.0f);
+    F m[K];
+    for (int i = 0; i < K; ++i) m[i] = F(0.0f);
+    for_each_level<L>(whole, occluding, [&](int k, M mk) {
+      F lo[K];
+      pyramid.template sample_at<L>(k, c, lo);
+      const M mix = mk & fractional;
+      if (any(mix)) {
+        F hi[K];
+        pyramid.template sample_at<L>(k + 1, c, hi);
+        const F f = level - to_float(whole);
+        for (int i = 0; i < K; ++i) lo[i] = select(mix, lo[i] * (1.0f - f) + hi[i] * f, lo[i]);
       }
-      m[1] = glm::max(m[1], m[0] * m[0]);
+      for (int i = 0; i < K; ++i) m[i] = select(mk, lo[i], m[i]);
+    });
+    const M remove = occluding & (own > 1e-4f);
+    if (any(remove)) {
+      const F keep = max(1.0f - own, F(1e-3f));
+      const F u = max(u_own, top);
+      F power = u;
+      for (int i = 0; i < K; ++i) {
+        m[i] = select(remove, max(m[i] - own * power, F(0.0f)) / keep, m[i]);
+        power = power * u;
+      }
+      m[1] = select(remove, max(m[1], m[0] * m[0]), m[1]);
     }
-    float fraction;
+    F fraction;
     if constexpr (K == 2) {
       // Chebyshev's expression at the atom: the share of the upper atom of
       // the two-valued distribution with these moments (atom > t > mean).
-      fraction = t <= m[0] ? 1.0f : chebyshev_occlusion(m[0], m[1], 0.5f * (t + top));
+      const F atom = 0.5f * (t + top);
+      const F variance = max(m[1] - m[0] * m[0], F(kMinMomentVariance));
+      const F d = atom - m[0];
+      fraction = select((F(t) <= m[0]) | (atom <= m[0]), F(1.0f), variance / (variance + d * d));
     } else {
-      fraction = occluded_fraction<K>(m, t);
+      static_assert(L::kWidth == 1, "four moments have no packet form");
+      fraction = occluded_fraction<K>(vec4(m[0], m[1], m[2], m[3]), t);
     }
-    return inside_share(c, sigma) * fraction;
+    return select(occluding, inside_share_lanes<L>(c, sigma) * fraction, F(0.0f));
   }
 
   // Unoccluded fraction of the surroundings of p (unit normal n): 1 - occlusion.
@@ -191,36 +244,63 @@ template <int K> struct OcclusionQueries {
   // negative for a receiver with nothing of the volume under it (a plane).
   PENUMBRA_HD float soft_shadow(vec3 p, vec3 n, vec3 to_light, float light_distance, float spread, float t,
                                 float u_own) const {
+    return soft_shadow_lanes<ScalarLanes>(p, n, to_light, light_distance, spread, t, u_own, true);
+  }
+  // The same for a packet of points (lanes that are off give 1): the
+  // scalar path is its one-lane instance, occlusion-map's packets
+  // (occlusion_map_packets.cpp) march 8 or 16 shadow queries at once.
+  template <class L>
+  PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Float soft_shadow_lanes(
+      const typename L::Vec3& p, const typename L::Vec3& n, const typename L::Vec3& to_light,
+      typename L::Float light_distance, typename L::Float spread, float t, typename L::Float u_own,
+      typename L::Mask active) const {
+    using F = typename L::Float;
+    using M = typename L::Mask;
+    using V = typename L::Vec3;
     const float lift = ao_offset * pyramid.sigma0;  // distance already travelled from p
-    const vec3 start = p + n * lift;
-    const Interval inside = intersect_box(Ray{start, to_light}, box, 0.0f, light_distance);
-    if (inside.empty()) return 1.0f;
+    const V start = p + n * lift;
+    F s(0.0f), end = light_distance;
+    box_overlap<L>(box, start, to_light, s, end);
+    active = active & (s < end);
+    if (none(active)) return F(1.0f);
     const float top = float(pyramid.level_count - 1);
     const float cutoff = glm::log(kShadowCutoff);
-    float log_transmittance = 0.0f;
-    float s = inside.t0;
-    while (s < inside.t1) {
+    const float slab = kShadowSlab * pyramid.sigma0;
+    const float cone = kConeSigmas * pyramid.sigma0;
+    F log_transmittance(0.0f);
+    M dark(false);  // lanes whose light is gone
+    while (any(active)) {
       // Four steps per iteration, as the paper evaluates four in parallel.
-      for (int i = 0; i < 4 && s < inside.t1; ++i) {
-        const float level = glm::clamp(glm::log2(glm::max((s + lift) * spread / (kConeSigmas * pyramid.sigma0), 1.0f)),
-                                       0.0f, top);
-        const int whole = int(level);  // level >= 0
-        const float step = pyramid.sigma_at(whole);
-        const float covered = glm::min(step, inside.t1 - s);
-        const vec3 c = start + s * to_light;
-        const float sigma = level == float(whole) ? step : pyramid.sigma(level);
+      for (int i = 0; i < 4; ++i) {
+        const M m = active & (s < end);
+        if (none(m)) break;
+        const F level = clamp(log2_positive(max((s + lift) * spread / cone, F(1.0f))), F(0.0f), F(top));
+        const auto whole = to_int_nonnegative(level);
+        const F step = pyramid.sigma0 * float_from_bits((whole + 127) << 23);  // sigma at the whole level
+        const F covered = min(step, end - s);
+        const V c = start + to_light * s;
+        const F sigma = pyramid.sigma0 * exp2_nonnegative(level);
         // The receiver's share; beyond height 2.7 it is under 7e-5, which
         // shadow_occlusion counts as none (own <= 1e-4), so erfc is skipped.
-        const float height = glm::dot(c - p, n) / (glm::sqrt(2.0f) * sigma);
-        const float own = u_own < 0.0f || height > 2.7f ? 0.0f : 0.5f * std::erfc(height);
-        const float occlusion = shadow_occlusion(level, sigma, c, t, own, u_own);
-        if (occlusion >= 1.0f) return 0.0f;
-        if (occlusion > 0.0f) log_transmittance += covered / (kShadowSlab * pyramid.sigma0) * glm::log(1.0f - occlusion);
-        s += step;
+        const F height = dot(c - p, n) / (1.41421356f * sigma);
+        const M shared = m & (u_own >= 0.0f) & (height <= 2.7f);
+        const F own = any(shared) ? select(shared, 0.5f * erfc_lanes(height), F(0.0f)) : F(0.0f);
+        const F occlusion = shadow_occlusion_lanes<L>(level, sigma, c, t, own, u_own, m);
+        const M blocked = m & (occlusion >= 1.0f);
+        dark = dark | blocked;
+        active = active & !blocked;
+        const M occluded = m & !blocked & (occlusion > 0.0f);
+        if (any(occluded)) {
+          const F kept = log_positive(select(occluded, 1.0f - occlusion, F(1.0f)));
+          log_transmittance = log_transmittance + select(occluded, covered / slab * kept, F(0.0f));
+        }
+        s = select(m, s + step, s);
       }
-      if (log_transmittance <= cutoff) return 0.0f;
+      const M cut = active & (log_transmittance <= cutoff);
+      dark = dark | cut;
+      active = active & !cut & (s < end);
     }
-    return glm::exp(log_transmittance);
+    return select(dark, F(0.0f), exp_nonpositive(log_transmittance));
   }
 };
 

@@ -10,6 +10,7 @@
 #include "penumbra/render/lighting.h"
 #include "penumbra/techniques/occlusion_map/isosurface_ray.h"
 #include "penumbra/techniques/occlusion_map/occlusion_queries.h"
+#include "penumbra/techniques/occlusion_map/soft_shadow_batch.h"
 
 namespace penumbra {
 
@@ -56,9 +57,13 @@ template <int K, class Sampler> struct SurfaceVisibility {
   float query;        // normalised occlusion query value t (ambient occlusion)
   float own_value;    // normalised value under the surface (negative: a plane, no volume under it)
   float ambient_occ;  // multiplies every light (1 when AO darkens only the ambient term)
+  // Soft shadows on CPU packets (soft_shadow_batch.h): the march toward
+  // light deferred->light is recorded, not run, and the other lights are dark.
+  SoftShadowQueries* deferred = nullptr;
 
   PENUMBRA_HD vec3 operator()(int light, vec3 p, const LightSample& ls) const {
     const OcclusionShadingSetup<K>& s = *setup;
+    if (deferred && light != deferred->light) return vec3(0.0f);
     float visible = ambient_occ;
     if (s.shadows == ShadowMode::Hard) {
       // One voxel off the surface, so the ray does not find the surface it leaves.
@@ -66,6 +71,10 @@ template <int K, class Sampler> struct SurfaceVisibility {
       if (iso_blocks(*s.iso_view, sampler, Ray{start, ls.to_light}, ls.distance, s.iso)) return vec3(0.0f);
     } else if (s.shadows == ShadowMode::Soft) {
       const float spread = s.queries.light_spread(s.iso_view->lights[light], p);
+      if (deferred) {
+        deferred->record(p, normal, ls.to_light, ls.distance, spread, own_value);
+        return vec3(visible);
+      }
       // Every occluder above the iso-value blocks the light, also one less
       // dense than the material under this surface.
       visible *= s.queries.soft_shadow(p, normal, ls.to_light, ls.distance, spread, s.normalise(s.iso), own_value);
@@ -95,7 +104,9 @@ template <int K, class Sampler> struct IsosurfaceShader {
     return n;
   }
 
-  PENUMBRA_HD vec3 surface(vec3 p, vec3 ray_dir) const {
+  // `deferred`: soft shadows deferred to packets (soft_shadow_batch.h); the
+  // result is then the ambient term only, the lights' shares are recorded.
+  PENUMBRA_HD vec3 surface(vec3 p, vec3 ray_dir, SoftShadowQueries* deferred = nullptr) const {
     const OcclusionShadingSetup<K>& s = *setup;
     const VolumeView& volume = s.iso_view->volume;
     const vec3 index = volume.index_from_world(p);
@@ -106,12 +117,15 @@ template <int K, class Sampler> struct IsosurfaceShader {
     const float ao = s.ambient_occlusion ? s.queries.ambient(p, n, query) : 1.0f;
     using Visibility = SurfaceVisibility<K, Sampler>;
     const ScatteringLighting<Visibility> lighting{
-        s.lit_view, Visibility{setup, sampler, n, query, query, s.ao_on_lights ? ao : 1.0f}, Shading::Phong};
+        s.lit_view, Visibility{setup, sampler, n, query, query, s.ao_on_lights ? ao : 1.0f, deferred}, Shading::Phong};
     const SamplePoint sample{p, index, s.iso, s.iso_color, 0.0f, ray_dir};
-    return lighting.sample(sample) + s.lit_view->material.albedo * s.iso_color * (s.ambient * ao);
+    const vec3 ambient = s.lit_view->material.albedo * s.iso_color * (s.ambient * ao);
+    if (!deferred) return lighting.sample(sample) + ambient;
+    deferred->defer_lights(s.lit_view->light_count, [&] { return lighting.sample(sample); });
+    return ambient;
   }
 
-  PENUMBRA_HD vec3 plane(const PlaneHit& h) const {
+  PENUMBRA_HD vec3 plane(const PlaneHit& h, SoftShadowQueries* deferred = nullptr) const {
     const OcclusionShadingSetup<K>& s = *setup;
     const Plane& plane = s.lit_view->planes[h.plane];
     const vec3 facing = glm::normalize(glm::dot(plane.normal, h.ray_dir) < 0.0f ? plane.normal : -plane.normal);
@@ -119,8 +133,12 @@ template <int K, class Sampler> struct IsosurfaceShader {
     const float ao = s.ambient_occlusion ? s.queries.ambient(h.position, facing, query) : 1.0f;
     using Visibility = SurfaceVisibility<K, Sampler>;
     const ScatteringLighting<Visibility> lighting{
-        s.lit_view, Visibility{setup, sampler, facing, query, -1.0f, s.ao_on_lights ? ao : 1.0f}, Shading::Phong};
-    return lighting.plane(h) + plane.color * (s.ambient * ao);
+        s.lit_view, Visibility{setup, sampler, facing, query, -1.0f, s.ao_on_lights ? ao : 1.0f, deferred},
+        Shading::Phong};
+    const vec3 ambient = plane.color * (s.ambient * ao);
+    if (!deferred) return lighting.plane(h) + ambient;
+    deferred->defer_lights(s.lit_view->light_count, [&] { return lighting.plane(h); });
+    return ambient;
   }
 };
 
