@@ -17,6 +17,8 @@
 #   BUILD=dir       the build folder with penumbra and penumbra_tests (default build)
 #   OUT=dir         scenes and raw results (default $BUILD/bench-occlusion-map)
 #   FRAMES=n        frames per `penumbra bench` (default 3)
+#   SIMD=mode       `--simd` of the frames (default auto; off: the scalar path)
+#   FRAMES_ONLY=1   skip the preprocessing measurements
 # Needs ../shared/data (engine, head). Takes about 1-2 minutes on a quiet 2-core
 # machine (the 512^3 synthetic's build is most of part 1).
 set -euo pipefail
@@ -30,9 +32,11 @@ frames=${FRAMES:-3}
 mkdir -p "$out"
 echo "# $(date -u '+%Y-%m-%d %H:%M UTC'), $(nproc) cores, load: $(cut -d' ' -f1-3 /proc/loadavg)"
 
-echo "## preprocessing and iso-value change (medians of $runs)"
-OCCLUSION_MAP_RUNS=$runs "$tests" --gtest_also_run_disabled_tests \
-  --gtest_filter='OcclusionMapBench.DISABLED_*' | grep '\[occlusion-map bench\]' | sed 's/^\[occlusion-map bench\] //'
+if [ "${FRAMES_ONLY:-0}" != 1 ]; then
+  echo "## preprocessing and iso-value change (medians of $runs)"
+  OCCLUSION_MAP_RUNS=$runs "$tests" --gtest_also_run_disabled_tests \
+    --gtest_filter='OcclusionMapBench.DISABLED_*' | grep '\[occlusion-map bench\]' | sed 's/^\[occlusion-map bench\] //'
+fi
 
 # The engine and head scenes of scenes/ (directional light, floor plane) with
 # an ambient term for the AO to act on and the iso-values of the docs' images.
@@ -47,7 +51,7 @@ for name, source in (("engine", "engine-directional.json"), ("head", "head-direc
     json.dump(scene, open(os.path.join(out, name + ".json"), "w"), indent=1)
 PY
 
-echo "## frames at 512x512 (penumbra bench, median of $frames frames)"
+echo "## frames at 512x512 (penumbra bench --simd ${SIMD:-auto}, median of $frames frames)"
 echo "| data set | iso_value | Phong ms | AO ms | HS ms | SS ms | AO+SS ms |"
 echo "|---|---|---|---|---|---|---|"
 for item in engine:0.5 head:0.47; do
@@ -59,7 +63,7 @@ for item in engine:0.5 head:0.47; do
               "ambient_occlusion=true shadows=soft"; do
     args=(--param iso_value=$iso)
     for p in $mode; do args+=(--param "$p"); done
-    ms=$("$bin" bench "$out/$name.json" --technique occlusion-map "${args[@]}" --frames "$frames" --size 512x512 2>/dev/null |
+    ms=$("$bin" --simd "${SIMD:-auto}" bench "$out/$name.json" --technique occlusion-map "${args[@]}" --frames "$frames" --size 512x512 2>/dev/null |
          python3 -c 'import json,sys; print("%.0f" % json.loads(sys.stdin.read().strip().splitlines()[-1])["frame_ms_median"])')
     row="$row $ms |"
   done
