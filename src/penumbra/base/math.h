@@ -27,35 +27,36 @@ template <class F> PENUMBRA_HD PENUMBRA_FORCE_INLINE F exp_nonpositive(F x) {
   return select(in_range, p * scale, F(0.0f));
 }
 
-// ln(x) for finite x > 0, to about 2e-7 relative: x = m 2^e with m in
-// [sqrt(1/2), sqrt(2)), ln(m) = 2 atanh(z), z = (m - 1) / (m + 1) (|z| < 0.172),
-// from its odd series. Inline and branch-free for the shading kernels.
-template <class F> PENUMBRA_HD PENUMBRA_FORCE_INLINE F log_positive(F x) {
+// x = m 2^e with m in [sqrt(1/2), sqrt(2)) for finite x > 0: returns ln(m) =
+// 2 atanh(z), z = (m - 1) / (m + 1) (|z| < 0.172), from its odd series, and
+// sets e. log_positive and log2_positive below.
+template <class F> PENUMBRA_HD PENUMBRA_FORCE_INLINE F log_mantissa(F x, F& exponent) {
   const auto bits = bits_of(x);
   auto e = ((bits >> 23) & 0xff) - 127;
   F m = float_from_bits((bits & 0x007fffff) | 0x3f800000);  // m in [1, 2)
   const auto high = m > 1.41421356f;
   m = select(high, m * 0.5f, m);
   e = select(high, e + 1, e);
+  exponent = to_float(e);
   const F z = (m - 1.0f) / (m + 1.0f);
   const F z2 = z * z;
-  const F series = 2.0f * z * (1.0f + z2 * (1.0f / 3.0f + z2 * (1.0f / 5.0f + z2 * (1.0f / 7.0f + z2 * (1.0f / 9.0f)))));
-  return to_float(e) * 0.693147180559945f + series;
+  return 2.0f * z * (1.0f + z2 * (1.0f / 3.0f + z2 * (1.0f / 5.0f + z2 * (1.0f / 7.0f + z2 * (1.0f / 9.0f)))));
 }
 
-// log2(x) for finite x > 0: log_positive's reduction with the exponent kept
-// exact, so a power of two gives its exponent exactly.
+// ln(x) for finite x > 0, to about 2e-7 relative. Inline and branch-free for
+// the shading kernels.
+template <class F> PENUMBRA_HD PENUMBRA_FORCE_INLINE F log_positive(F x) {
+  F exponent;
+  const F series = log_mantissa(x, exponent);
+  return exponent * 0.693147180559945f + series;
+}
+
+// log2(x) for finite x > 0, with the exponent kept exact, so a power of two
+// gives its exponent exactly.
 template <class F> PENUMBRA_HD PENUMBRA_FORCE_INLINE F log2_positive(F x) {
-  const auto bits = bits_of(x);
-  auto e = ((bits >> 23) & 0xff) - 127;
-  F m = float_from_bits((bits & 0x007fffff) | 0x3f800000);
-  const auto high = m > 1.41421356f;
-  m = select(high, m * 0.5f, m);
-  e = select(high, e + 1, e);
-  const F z = (m - 1.0f) / (m + 1.0f);
-  const F z2 = z * z;
-  const F series = 2.0f * z * (1.0f + z2 * (1.0f / 3.0f + z2 * (1.0f / 5.0f + z2 * (1.0f / 7.0f + z2 * (1.0f / 9.0f)))));
-  return to_float(e) + series * 1.44269504088896341f;
+  F exponent;
+  const F series = log_mantissa(x, exponent);
+  return exponent + series * 1.44269504088896341f;
 }
 
 // 2^x for x >= 0 below 128: the whole part built into the exponent bits, the
@@ -67,10 +68,11 @@ template <class F> PENUMBRA_HD PENUMBRA_FORCE_INLINE F exp2_nonnegative(F x) {
   return select(fraction > 0.0f, power * (2.0f * exp_nonpositive((fraction - 1.0f) * 0.693147180559945f)), power);
 }
 
-// erfc(x), to about 1.2e-7 relative everywhere: the Chebyshev fit of
-// t exp(-x^2 + P(t)), t = 1 / (1 + |x| / 2), of Press et al., Numerical
-// Recipes in C, 2nd ed., section 6.2 (their erfcc; the coefficients are
-// theirs), and erfc(-x) = 2 - erfc(x). Inline and branch-free, for
+// erfc(x): the Chebyshev fit of t exp(-x^2 + P(t)), t = 1 / (1 + |x| / 2),
+// of Press et al., Numerical Recipes in C, 2nd ed., section 6.2 (their erfcc;
+// the coefficients are theirs; 1.2e-7 relative in exact arithmetic), and
+// erfc(-x) = 2 - erfc(x). In float: within 1e-6 relative up to |x| = 4, and
+// about x^2 6e-8 beyond (the rounding of x^2 in the exponent; Math tests). Inline and branch-free, for
 // occlusion-map's per-step shares on every lane type.
 template <class F> PENUMBRA_HD PENUMBRA_FORCE_INLINE F erfc_lanes(F x) {
   const F z = max(x, -x);

@@ -29,11 +29,6 @@ namespace penumbra {
 
 namespace HWY_NAMESPACE {
 
-inline constexpr SimdTarget kThisSimdTarget = SimdTarget::PENUMBRA_SIMD_TARGET;
-static_assert((kThisSimdTarget == SimdTarget::Avx3 && HWY_TARGET == HWY_AVX3) ||
-                  (kThisSimdTarget == SimdTarget::Avx2 && HWY_TARGET == HWY_AVX2),
-              "the unit's -m flags and PENUMBRA_SIMD_TARGET disagree (cmake/PenumbraSimd.cmake)");
-
 template <class Lighting> struct PacketImage {
   const RenderView* view;
   const Lighting* lighting;

@@ -17,6 +17,7 @@
 #error "simd_lanes.h belongs in a per-target SIMD unit (penumbra_simd_sources in cmake/PenumbraSimd.cmake)"
 #endif
 
+#include "penumbra/backends/cpu/packets.h"
 #include "penumbra/base/lanes.h"
 #include "penumbra/scene/light.h"
 
@@ -28,6 +29,13 @@ namespace penumbra {
 namespace HWY_NAMESPACE {
 
 namespace hn = hwy::HWY_NAMESPACE;
+
+// The target this unit is built for.
+inline constexpr SimdTarget kThisSimdTarget = SimdTarget::PENUMBRA_SIMD_TARGET;
+static_assert((kThisSimdTarget == SimdTarget::Avx3 && HWY_TARGET == HWY_AVX3) ||
+                  (kThisSimdTarget == SimdTarget::Avx2 && HWY_TARGET == HWY_AVX2),
+              "the unit's -m flags and PENUMBRA_SIMD_TARGET disagree (cmake/PenumbraSimd.cmake)");
+
 using FloatTag = hn::ScalableTag<float>;
 using IntTag = hn::RebindToSigned<FloatTag>;
 using UintTag = hn::RebindToUnsigned<FloatTag>;

@@ -8,11 +8,6 @@
 namespace penumbra {
 namespace HWY_NAMESPACE {
 
-inline constexpr SimdTarget kSoftShadowTarget = SimdTarget::PENUMBRA_SIMD_TARGET;
-static_assert((kSoftShadowTarget == SimdTarget::Avx3 && HWY_TARGET == HWY_AVX3) ||
-                  (kSoftShadowTarget == SimdTarget::Avx2 && HWY_TARGET == HWY_AVX2),
-              "the unit's -m flags and PENUMBRA_SIMD_TARGET disagree (cmake/PenumbraSimd.cmake)");
-
 __attribute__((flatten)) void march_batch(const OcclusionQueries<2>& queries, float t, const SoftShadowQueries& batch,
                                           float* out) {
   using L = SimdLanes;
@@ -33,7 +28,7 @@ __attribute__((flatten)) void march_batch(const OcclusionQueries<2>& queries, fl
 
 template <SimdTarget Target>
 void march_soft_shadows(const OcclusionQueries<2>& queries, float t, const SoftShadowQueries& batch, float* out) {
-  static_assert(Target == HWY_NAMESPACE::kSoftShadowTarget, "each SIMD unit instantiates its own target only");
+  static_assert(Target == HWY_NAMESPACE::kThisSimdTarget, "each SIMD unit instantiates its own target only");
   HWY_NAMESPACE::march_batch(queries, t, batch, out);
 }
 
