@@ -77,13 +77,16 @@ template <class F> PENUMBRA_HD PENUMBRA_FORCE_INLINE F exp2_nonnegative(F x) {
 template <class F> PENUMBRA_HD PENUMBRA_FORCE_INLINE F erfc_lanes(F x) {
   const F z = max(x, -x);
   const F t = 1.0f / (1.0f + 0.5f * z);
-  const F p =
-      -1.26551223f +
-      t * (1.00002368f +
-           t * (0.37409196f +
-                t * (0.09678418f +
-                     t * (-0.18628806f +
-                          t * (0.27886807f + t * (-1.13520398f + t * (1.48851587f + t * (-0.82215223f + t * 0.17087277f))))))));
+  F p = 0.17087277f;
+  p = -0.82215223f + t * p;
+  p = 1.48851587f + t * p;
+  p = -1.13520398f + t * p;
+  p = 0.27886807f + t * p;
+  p = -0.18628806f + t * p;
+  p = 0.09678418f + t * p;
+  p = 0.37409196f + t * p;
+  p = 1.00002368f + t * p;
+  p = -1.26551223f + t * p;  // Horner, highest coefficient first
   const F tail = t * exp_nonpositive(min(p - z * z, F(0.0f)));
   return select(x >= 0.0f, tail, 2.0f - tail);
 }

@@ -88,10 +88,11 @@ template <int K> struct OcclusionQueries {
     typename L::Mask outside(false);
     for (int a = 0; a < 3; ++a) {
       // The share along an axis is (erf(above) - erf(below)) / 2, i.e.
-      // (erfc(below) - erfc(above)) / 2. erf is exactly +-1 in float beyond 4 (1 - erf(4) = 1.5e-8), so an
-      // axis along which the centre lies more than 4 / scale inside both
-      // faces contributes exactly 1 and one that far outside a face exactly
-      // 0, without the erf calls (most samples of a march lie inside).
+      // (erfc(below) - erfc(above)) / 2. erf is exactly +-1 in float beyond
+      // 4 (1 - erf(4) = 1.5e-8), so an axis along which the centre lies more
+      // than 4 / scale inside both faces contributes exactly 1 and one that
+      // far outside a face exactly 0, without the erfc calls (most samples
+      // of a march lie inside).
       const F above = (box.upper[a] - c[a]) * scale, below = (box.lower[a] - c[a]) * scale;
       outside = outside | (above < -4.0f) | (below > 4.0f);
       const auto inner = (above > 4.0f) & (below < -4.0f);
@@ -153,7 +154,8 @@ template <int K> struct OcclusionQueries {
     // The maximum of the coarser of the two levels.
     const auto coarser = select(fractional, whole + 1, whole);
     F top(0.0f);
-    for_each_level<L>(coarser, active, [&](int k, M mk) { top = select(mk, pyramid.template maximum_at<L>(k, c), top); });
+    for_each_level<L>(coarser, active,
+                      [&](int k, M mk) { top = select(mk, pyramid.template maximum_at<L>(k, c), top); });
     const M occluding = active & (top >= t);
     if (none(occluding)) return F(0.0f);
     F m[K];

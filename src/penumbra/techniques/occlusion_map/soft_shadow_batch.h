@@ -36,7 +36,8 @@ struct SoftShadowQueries {
   // OcclusionQueries::soft_shadow for the arguments).
   PENUMBRA_HD void record(vec3 p, vec3 n, vec3 to_light, float distance, float spread, float own) {
     const int i = count++;
-    const float values[kFields] = {p.x, p.y, p.z, n.x, n.y, n.z, to_light.x, to_light.y, to_light.z, distance, spread, own};
+    const float values[kFields] = {p.x,        p.y,        p.z,        n.x,      n.y,    n.z,
+                                   to_light.x, to_light.y, to_light.z, distance, spread, own};
     for (int f = 0; f < kFields; ++f) field(f)[i] = values[f];
     pixels[i] = pixel;
     shares[i] = vec3(0.0f);
