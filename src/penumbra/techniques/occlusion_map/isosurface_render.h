@@ -32,11 +32,13 @@ PENUMBRA_HD vec4 isosurface_pixel(const IsosurfaceShader<K, Sampler>& shader, co
 // The per-pixel functor both backends run: pixel (x, y)'s ray, its shaded
 // hit written to out; returns the samples taken.
 template <int K, class Sampler>
-PENUMBRA_HD std::uint64_t isosurface_pixel_at(const IsosurfaceShader<K, Sampler>& shader, vec4* out, int x, int y) {
+PENUMBRA_HD std::uint64_t isosurface_pixel_at(const IsosurfaceShader<K, Sampler>& shader, vec4* out, int x, int y,
+                                              SoftShadowQueries* deferred = nullptr) {
   const RenderView& v = *shader.setup->iso_view;
   const Ray ray = v.camera.pixel_ray(float(x) + 0.5f, float(y) + 0.5f, v.width, v.height);
   std::uint64_t samples = 0;
-  out[std::size_t(y) * std::size_t(v.width) + std::size_t(x)] = isosurface_pixel(shader, ray, samples);
+  if (deferred) deferred->pixel = y * v.width + x;
+  out[std::size_t(y) * std::size_t(v.width) + std::size_t(x)] = isosurface_pixel(shader, ray, samples, deferred);
   return samples;
 }
 
@@ -72,11 +74,7 @@ std::uint64_t render_isosurface_tile_packets(const IsosurfaceShader<2, Sampler>&
   SoftShadowQueries queries = batch.queries();
   std::uint64_t samples = 0;
   for (int y = y0; y < y1; ++y) {
-    for (int x = x0; x < x1; ++x) {
-      queries.pixel = y * v.width + x;
-      const Ray ray = v.camera.pixel_ray(float(x) + 0.5f, float(y) + 0.5f, v.width, v.height);
-      image.at(x, y) = isosurface_pixel(shader, ray, samples, &queries);
-    }
+    for (int x = x0; x < x1; ++x) samples += isosurface_pixel_at(shader, image.data(), x, y, &queries);
   }
   SoftShadowBatch::pad(queries);
   march(setup.queries, setup.normalise(setup.iso), queries, batch.visibility());

@@ -132,21 +132,52 @@ template <int K> struct MomentPyramidView {
 
   // The largest u anywhere in the box of half-width kMaximumRadiusSigmas
   // sigma around `world` (or a larger box): the nearest node's maximum. A
-  // fractional level reads the coarser of its two levels.
-  PENUMBRA_HD float maximum(float level, vec3 world) const {
-    const float top = float(level_count - 1);
-    level = level < 0.0f ? 0.0f : (level > top ? top : level);
-    return maximum_at<ScalarLanes>(int(glm::ceil(level)), world);
+  // fractional level reads the coarser of its two levels. Each lane at its
+  // own level (clamped to the pyramid); lanes off in `lanes` read 0.
+  template <class L>
+  PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Float maximum_lanes(typename L::Float level,
+                                                                   const typename L::Vec3& world,
+                                                                   typename L::Mask lanes) const {
+    using F = typename L::Float;
+    level = clamp(level, F(0.0f), F(float(level_count - 1)));
+    const auto whole = to_int_nonnegative(level);
+    const auto coarser = select(level > to_float(whole), whole + 1, whole);
+    F top(0.0f);
+    for_each_level<L>(coarser, lanes,
+                      [&](int k, typename L::Mask at) { top = select(at, maximum_at<L>(k, world), top); });
+    return top;
   }
+  PENUMBRA_HD float maximum(float level, vec3 world) const { return maximum_lanes<ScalarLanes>(level, world, true); }
 
-  // A fractional level: the moments of the two nearest levels, mixed.
+  // A fractional level: the moments of the two nearest levels, mixed. Each
+  // lane at its own level; lanes off in `lanes` read 0.
+  template <class L>
+  PENUMBRA_HD PENUMBRA_FORCE_INLINE void sample_lanes(typename L::Float level, const typename L::Vec3& world,
+                                                      typename L::Mask lanes, typename L::Float (&out)[K]) const {
+    using F = typename L::Float;
+    using M = typename L::Mask;
+    level = clamp(level, F(0.0f), F(float(level_count - 1)));
+    const auto whole = to_int_nonnegative(level);
+    const F f = level - to_float(whole);
+    for (int i = 0; i < K; ++i) out[i] = F(0.0f);
+    for_each_level<L>(whole, lanes, [&](int k, M at) {
+      F lo[K];
+      sample_at<L>(k, world, lo);
+      const M mix = at & (f > 0.0f);
+      if (any(mix)) {
+        F hi[K];
+        sample_at<L>(k + 1, world, hi);
+        for (int i = 0; i < K; ++i) lo[i] = select(mix, lerp<F>(lo[i], hi[i], f), lo[i]);
+      }
+      for (int i = 0; i < K; ++i) out[i] = select(at, lo[i], out[i]);
+    });
+  }
   PENUMBRA_HD Moments sample(float level, vec3 world) const {
-    const float top = float(level_count - 1);
-    level = level < 0.0f ? 0.0f : (level > top ? top : level);
-    const int lo = int(level);
-    const float f = level - float(lo);
-    if (f <= 0.0f) return sample(lo, world);
-    return glm::mix(sample(lo, world), sample(lo + 1, world), f);
+    float m[K];
+    sample_lanes<ScalarLanes>(level, world, true, m);
+    Moments r;
+    for (int i = 0; i < K; ++i) r[i] = m[i];
+    return r;
   }
 
  private:

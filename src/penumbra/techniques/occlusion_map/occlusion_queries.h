@@ -147,31 +147,11 @@ template <int K> struct OcclusionQueries {
                                                                             typename L::Mask active) const {
     using F = typename L::Float;
     using M = typename L::Mask;
-    const float highest = float(pyramid.level_count - 1);
-    level = clamp(level, F(0.0f), F(highest));
-    const auto whole = to_int_nonnegative(level);
-    const M fractional = level > to_float(whole);
-    // The maximum of the coarser of the two levels.
-    const auto coarser = select(fractional, whole + 1, whole);
-    F top(0.0f);
-    for_each_level<L>(coarser, active,
-                      [&](int k, M mk) { top = select(mk, pyramid.template maximum_at<L>(k, c), top); });
+    const F top = pyramid.template maximum_lanes<L>(level, c, active);
     const M occluding = active & (top >= t);
     if (none(occluding)) return F(0.0f);
     F m[K];
-    for (int i = 0; i < K; ++i) m[i] = F(0.0f);
-    for_each_level<L>(whole, occluding, [&](int k, M mk) {
-      F lo[K];
-      pyramid.template sample_at<L>(k, c, lo);
-      const M mix = mk & fractional;
-      if (any(mix)) {
-        F hi[K];
-        pyramid.template sample_at<L>(k + 1, c, hi);
-        const F f = level - to_float(whole);
-        for (int i = 0; i < K; ++i) lo[i] = select(mix, lo[i] * (1.0f - f) + hi[i] * f, lo[i]);
-      }
-      for (int i = 0; i < K; ++i) m[i] = select(mk, lo[i], m[i]);
-    });
+    pyramid.template sample_lanes<L>(level, c, occluding, m);
     const M remove = occluding & (own > 1e-4f);
     if (any(remove)) {
       const F keep = max(1.0f - own, F(1e-3f));
