@@ -137,6 +137,13 @@ PENUMBRA_HD PENUMBRA_FORCE_INLINE vec3 load_texel_xyz(const std::int8_t* texels,
   const std::int8_t* c = texels + 4 * offset;
   return vec3(float(c[0]), float(c[1]), float(c[2]));
 }
+// The texels at `offset` and `offset + step` (see load_voxel_pair): plain loads
+// here; for packets and step 1 both from one 64-bit gather (simd_lanes.h).
+PENUMBRA_HD PENUMBRA_FORCE_INLINE void load_texel_pair_xyz(const std::int8_t* texels, std::int64_t offset,
+                                                            std::int64_t step, vec3& first, vec3& second) {
+  first = load_texel_xyz(texels, offset);
+  second = load_texel_xyz(texels, offset + step);
+}
 
 // Lane-generic helpers written once over L.
 template <class L> using LaneFloat = typename L::Float;

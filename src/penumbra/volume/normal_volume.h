@@ -32,11 +32,12 @@ struct NormalView {
     using V = typename L::Vec3;
     const X& base = cell.base;
     const F &fx = cell.fx, &fy = cell.fy, &fz = cell.fz;
-    const X sx(grid.stride_x), sy(grid.stride_y), sz(grid.stride_z);
-    const V c000 = load_texel_xyz(texels, base), c100 = load_texel_xyz(texels, base + sx);
-    const V c010 = load_texel_xyz(texels, base + sy), c110 = load_texel_xyz(texels, base + sx + sy);
-    const V c001 = load_texel_xyz(texels, base + sz), c101 = load_texel_xyz(texels, base + sx + sz);
-    const V c011 = load_texel_xyz(texels, base + sy + sz), c111 = load_texel_xyz(texels, base + sx + sy + sz);
+    const X sy(grid.stride_y), sz(grid.stride_z);
+    V c000, c100, c010, c110, c001, c101, c011, c111;
+    load_texel_pair_xyz(texels, base, grid.stride_x, c000, c100);
+    load_texel_pair_xyz(texels, base + sy, grid.stride_x, c010, c110);
+    load_texel_pair_xyz(texels, base + sz, grid.stride_x, c001, c101);
+    load_texel_pair_xyz(texels, base + sy + sz, grid.stride_x, c011, c111);
     const V x00 = c000 + fx * (c100 - c000);
     const V x10 = c010 + fx * (c110 - c010);
     const V x01 = c001 + fx * (c101 - c001);

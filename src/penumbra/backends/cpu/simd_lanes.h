@@ -254,9 +254,32 @@ HWY_INLINE Vec3V select(MaskV m, const Vec3V& a, const Vec3V& b) {
 
 // Bytes 0, 1, 2 of the 4-byte texel at `offset` (texel units) as signed
 // values (see lanes.h).
-HWY_INLINE Vec3V load_texel_xyz(const std::int8_t* texels, IntV offset) {
-  const IntV word = gather_word(texels, offset << 2);
+HWY_INLINE Vec3V texel_xyz(IntV word) {
   return Vec3V(to_float((word << 24) >> 24), to_float((word << 16) >> 24), to_float((word << 8) >> 24));
+}
+HWY_INLINE Vec3V load_texel_xyz(const std::int8_t* texels, IntV offset) {
+  return texel_xyz(gather_word(texels, offset << 2));
+}
+// The texels at `offset` and `offset + step` (lanes.h). With step 1 they are
+// the two halves of one 8-byte word: two 64-bit gathers (each over half the
+// lanes) fetch what four 32-bit gathers of the same lanes would. offset + 1 is
+// a texel of the grid wherever step is 1 (a cell's base is at most dims - 2).
+HWY_INLINE void load_texel_pair_xyz(const std::int8_t* texels, IntV offset, std::int64_t step, Vec3V& first,
+                                    Vec3V& second) {
+  if (step != 1) {
+    first = load_texel_xyz(texels, offset);
+    second = load_texel_xyz(texels, offset + IntV(std::int32_t(step)));
+    return;
+  }
+  const hn::Repartition<std::int64_t, IntTag> wide;
+  const hn::Half<IntTag> half;
+  const auto* words = reinterpret_cast<const std::int64_t*>(texels);
+  const IntV bytes = offset << 2;
+  const auto lower = hn::GatherOffset(wide, words, hn::PromoteTo(wide, hn::LowerHalf(half, bytes.v)));
+  const auto upper = hn::GatherOffset(wide, words, hn::PromoteTo(wide, hn::UpperHalf(half, bytes.v)));
+  // Little-endian: the even 32-bit halves are the texels at offset, the odd ones those after them.
+  first = texel_xyz(IntV(hn::ConcatEven(IntTag(), hn::BitCast(IntTag(), upper), hn::BitCast(IntTag(), lower))));
+  second = texel_xyz(IntV(hn::ConcatOdd(IntTag(), hn::BitCast(IntTag(), upper), hn::BitCast(IntTag(), lower))));
 }
 
 struct SimdLanes {
