@@ -1,9 +1,12 @@
 #include "penumbra/techniques/occlusion_map/occlusion_map.h"
 
+#include "penumbra/base/error.h"
 #include "penumbra/render/scene_resources.h"
 #include "penumbra/techniques/occlusion_map/iso_occupancy.h"
 #include "penumbra/techniques/occlusion_map/isosurface_render.h"
 #include "penumbra/techniques/occlusion_map/moment_pyramid.h"
+#include "penumbra/techniques/sat_common/table_dependencies.h"
+#include "penumbra/techniques/sat_common/visibility_cache.h"
 
 #include <optional>
 
@@ -36,6 +39,7 @@ class OcclusionMap final : public Technique {
     if (data_changed || pyramid_.empty() || !(settings == pyramid_.settings()) ||
         scene.clip_planes() != pyramid_.clip_planes()) {
       const ValueRange range = scene.volume().value_range();
+      dvr_shadows_.clear();  // marched through the old pyramid
       pyramid_ = MomentPyramid(scene.volume_view(), vec2(range.min, range.max), settings, scene.clip_planes());
       data_version_ = data_version;
       ++rebuilds_;
@@ -45,7 +49,10 @@ class OcclusionMap final : public Technique {
     if (data_changed || !occupancy_ || occupancy_->iso_value() != iso_) {
       occupancy_.emplace(resources_.macrocells(), iso_);
     }
-    shadows_ = dvr_ ? ShadowMode::None : shadow_mode(params.choice("shadows"));
+    shadows_ = shadow_mode(params.choice("shadows"));
+    if (dvr_ && shadows_ == ShadowMode::Hard) {
+      throw InvalidArgument("shadows", "mode dvr has soft shadows or none; hard shadows (iso-test rays) need mode iso");
+    }
     ambient_occlusion_ = params.flag("ambient_occlusion");
     const std::string& combine = params.choice("ao_combine");
     ao_combine_ = combine == "mean" ? AoCombine::Mean : (combine == "product" ? AoCombine::Product : AoCombine::Max);
@@ -54,6 +61,7 @@ class OcclusionMap final : public Technique {
     const float size = float(params.number("light_size_deg"));
     default_spread_ = std::tan(glm::radians(size < 0.0f ? kDefaultLightSizeDeg : size));
     forced_spread_ = size < 0.0f ? -1.0f : default_spread_;
+    update_dvr_shadows(scene, params);
   }
 
   void render(const Scene& scene, Image& image, RenderStats* stats) override {
@@ -64,12 +72,101 @@ class OcclusionMap final : public Technique {
     }
   }
 
-  std::uint64_t aux_bytes() const override { return pyramid_.bytes() + (occupancy_ ? occupancy_->bytes() : 0); }
-  // Builds of the moment pyramid (the iso flag grid is not counted: it is
-  // rebuilt with the iso-value by design and costs microseconds).
+  std::uint64_t aux_bytes() const override {
+    return pyramid_.bytes() + (occupancy_ ? occupancy_->bytes() : 0) + dvr_shadows_.bytes();
+  }
+  // Builds of the moment pyramid and of DVR mode's shadow grids, one per
+  // light (the iso flag grid is not counted: it is rebuilt with the iso-value
+  // by design and costs microseconds).
   std::uint64_t rebuilds() const override { return rebuilds_; }
 
  private:
+  template <int K> OcclusionQueries<K> queries(const Box3& box) const {
+    OcclusionQueries<K> q;
+    q.pyramid = pyramid_.view<K>();
+    q.box = box;
+    q.ao_offset = ao_offset_;
+    q.ao_combine = ao_combine_;
+    q.default_spread = default_spread_;
+    q.forced_spread = forced_spread_;
+    return q;
+  }
+  ValueNormalisation normalisation() const {
+    const vec2 range = pyramid_.value_range();
+    return ValueNormalisation{range.x, range.y > range.x ? 1.0f / (range.y - range.x) : 1.0f};
+  }
+
+  // DVR mode's soft shadows: one grid per light over the volume's box, at the
+  // map's level-0 resolution, each node marched once (occlusion_shading.h,
+  // dvr_soft_shadow). A grid is rebuilt when its light moves or changes
+  // size, or when the pyramid, the iso-value or the march's parameters
+  // change; a TF or camera change keeps it.
+  void update_dvr_shadows(const Scene& scene, const ParameterValues& params) {
+    if (!dvr_ || shadows_ != ShadowMode::Soft) {
+      dvr_shadows_.clear();
+      return;
+    }
+    ParameterValues key = params;
+    for (const char* name : {"ambient_occlusion", "ao_combine", "ao_lights"}) {
+      key.set(name, params.table().at(name).default_value);
+    }
+    const std::vector<Light>& lights = scene.lights();
+    std::vector<LightPlacement> placements = light_placements(lights);
+    std::vector<vec4> sizes;
+    for (const Light& l : lights) sizes.push_back(vec4(l.angle_deg, l.spread_y_deg(), l.radius, float(l.profile)));
+    if (dvr_shadows_.current(key) && placements == dvr_placements_ && sizes == dvr_sizes_ && iso_ == dvr_iso_) {
+      return;
+    }
+    if (iso_ != dvr_iso_) dvr_shadows_.clear();
+    const VolumeView volume = scene.volume_view();
+    const Box3 box = scene.volume().world_box();
+    const AnyVoxelSampler sampler(volume.data, volume.dims, volume.type);
+    const ValueNormalisation normalise = normalisation();
+    const float t = normalise(iso_);
+    const auto build = [&](const auto& visibility) {
+      return dvr_shadows_.update(
+          lights.size(), box, visibility_cache_dims(volume.dims, float(params.number("resolution"))), key,
+          [&](std::size_t i) { return lights[i].type != LightType::Environment; },
+          [&](std::size_t i) {
+            return i >= dvr_placements_.size() || !(placements[i] == dvr_placements_[i]) || sizes[i] != dvr_sizes_[i];
+          },
+          visibility);
+    };
+    const auto query = [&](const auto& q, std::size_t light, vec3 p) {
+      return dvr_soft_shadow_query(q, volume, sampler, normalise, lights[light], p);
+    };
+    const OcclusionQueries<2> q2 = queries<2>(box);
+    const SoftShadowMarch march = q2.packets_fit() ? soft_shadow_march(active_simd_target()) : nullptr;
+    if (pyramid_.moments() == 4) {
+      const OcclusionQueries<4> q4 = queries<4>(box);
+      rebuilds_ += std::uint64_t(build([&](std::size_t i, vec3 p) { return soft_shadow(q4, query(q4, i, p), t); }));
+    } else if (!march) {
+      rebuilds_ += std::uint64_t(build([&](std::size_t i, vec3 p) { return soft_shadow(q2, query(q2, i, p), t); }));
+    } else {
+      // The nodes' marches as SIMD packets (soft_shadow_batch.h), a few thousand at a time.
+      rebuilds_ += std::uint64_t(build([&](std::size_t i, std::int64_t count, const auto& point, float* out) {
+        constexpr std::int64_t kChunk = 4096;
+        parallel_for(0, (count + kChunk - 1) / kChunk, [&](std::int64_t first, std::int64_t last) {
+          SoftShadowBatch batch(int(kChunk), 1);
+          for (std::int64_t c = first; c < last; ++c) {
+            const std::int64_t begin = c * kChunk, end = std::min(count, begin + kChunk);
+            SoftShadowQueries marches = batch.queries();
+            for (std::int64_t n = begin; n < end; ++n) {
+              const SoftShadowQuery s = query(q2, i, point(n));
+              marches.record(s.p, s.n, s.to_light, s.distance, s.spread, s.own);
+            }
+            SoftShadowBatch::pad(marches);
+            march(q2, t, marches, batch.visibility());
+            std::copy(batch.visibility(), batch.visibility() + (end - begin), out + begin);
+          }
+        }, 1);
+      }));
+    }
+    dvr_placements_ = std::move(placements);
+    dvr_sizes_ = std::move(sizes);
+    dvr_iso_ = iso_;
+  }
+
   template <int K> void render_with(const Scene& scene, Image& image, RenderStats* stats) const {
     RenderView lit = resources_.view(scene);
     const float ambient = lit.material.ambient;
@@ -78,14 +175,8 @@ class OcclusionMap final : public Technique {
     OcclusionShadingSetup<K> setup;
     setup.lit_view = &lit;
     setup.iso_view = &iso_view;
-    setup.queries.pyramid = pyramid_.view<K>();
-    setup.queries.box = lit.box;
-    setup.queries.ao_offset = ao_offset_;
-    setup.queries.ao_combine = ao_combine_;
-    setup.queries.default_spread = default_spread_;
-    setup.queries.forced_spread = forced_spread_;
-    const vec2 range = pyramid_.value_range();
-    setup.normalise = ValueNormalisation{range.x, range.y > range.x ? 1.0f / (range.y - range.x) : 1.0f};
+    setup.queries = queries<K>(lit.box);
+    setup.normalise = normalisation();
     setup.iso = iso_;
     setup.iso_color = vec3(lit.tf.lookup(iso_));
     setup.ambient = ambient;
@@ -101,7 +192,8 @@ class OcclusionMap final : public Technique {
     render_image(
         lit,
         [&](const auto& sampler) {
-          return DvrOcclusionLighting<K, std::decay_t<decltype(sampler)>>{&setup, sampler, shading};
+          return DvrOcclusionLighting<K, std::decay_t<decltype(sampler)>>{
+              &setup, sampler, shading, dvr_shadows_.built() ? dvr_shadows_.views() : nullptr};
         },
         image, stats);
   }
@@ -109,6 +201,10 @@ class OcclusionMap final : public Technique {
   SceneResources resources_;
   MomentPyramid pyramid_;
   std::optional<IsoOccupancy> occupancy_;
+  LightVisibilityCaches dvr_shadows_;  // mode dvr, soft shadows: one grid per light
+  std::vector<LightPlacement> dvr_placements_;  // what they were built for
+  std::vector<vec4> dvr_sizes_;
+  float dvr_iso_ = 0.0f;
   std::uint64_t data_version_ = 0;
   std::uint64_t rebuilds_ = 0;
   bool dvr_ = false;
@@ -132,9 +228,11 @@ TechniqueInfo occlusion_map_info() {
           ParameterSpec::real("iso_value", 0.5, 0.0, 1.0,
                               "iso-value normalised to the TF range (0 = range min, 1 = range max)"),
           ParameterSpec::choice("mode", "iso", {"iso", "dvr"},
-                                "iso: isosurface ray casting; dvr: DVR with the same ambient occlusion (Fig. 11)"),
+                                "iso: isosurface ray casting; dvr: DVR with the same ambient occlusion (Fig. 11) and "
+                                "soft shadows from a grid per light"),
           ParameterSpec::choice("shadows", "soft", {"none", "hard", "soft"},
-                                "isosurface shadows: none, hard (iso-test ray) or soft (occlusion-map march)"),
+                                "none, hard (iso-test ray; mode iso only) or soft (occlusion-map march; in mode dvr "
+                                "marched once per grid node)"),
           ParameterSpec::flag("ambient_occlusion", true, "ambient occlusion from four pyramid levels along the normal"),
           ParameterSpec::choice("ao_combine", "product", {"max", "mean", "product"},
                                 "combine the four levels' occlusion: max (the paper), mean, or product of the "

@@ -13,11 +13,12 @@
 //                      min, 1 = range max; the range is the data range unless
 //                      the TF names one), in [0, 1]
 //   mode               iso: isosurface ray casting; dvr: the scene's DVR with
-//                      the same ambient occlusion per sample (Fig. 11), lights
-//                      unshadowed
-//   shadows            none | hard (a ray with the iso test) | soft (a march
-//                      through the occlusion map accumulating transmittance,
-//                      occluders at any value above the iso-value)
+//                      the same ambient occlusion per sample (Fig. 11) and
+//                      soft shadows read from a grid per light
+//   shadows            none | hard (a ray with the iso test; mode iso only) |
+//                      soft (a march through the occlusion map accumulating
+//                      transmittance, occluders at any value above the
+//                      iso-value; in mode dvr marched once per grid node)
 //   ambient_occlusion  on/off
 //   ao_combine         max (the paper) | mean of the four levels' occlusion |
 //                      product of their unoccluded fractions (default: the
@@ -43,12 +44,19 @@
 //   prepare: the moment pyramid, only when the data, the clip planes or the
 //            three map parameters (moments, resolution, kernel_size) change (rebuilds()
 //            counts these builds); a per-macrocell iso flag grid when the
-//            iso-value changes (a few thousand comparisons)
+//            iso-value changes (a few thousand comparisons); mode dvr with
+//            soft shadows: per light a grid over the volume's box at the
+//            map's level-0 resolution, one soft-shadow march per node (SIMD
+//            packets for two moments), rebuilt when the light moves or
+//            changes size, the iso-value, the pyramid or light_size_deg /
+//            ao_offset change, kept for TF and camera changes (counted in
+//            rebuilds())
 //   render:  iso: one ray per pixel to the first crossing, refined by binary
 //            search, shaded Blinn-Phong with the central-difference gradient;
 //            AO from four pyramid lookups along the normal; per light a hard
 //            shadow ray or a soft-shadow march. dvr: the shared compositing
-//            loop with the AO per sample.
+//            loop with the AO per sample and one trilinear read of each
+//            light's grid; planes as in iso mode.
 // Outside the volume's box nothing occludes: a region reaching past the box
 // counts only its inside share (occlusion_queries.h).
 // Clip planes cut the surface, the hard-shadow rays and the map: clipped

@@ -142,32 +142,95 @@ template <int K, class Sampler> struct IsosurfaceShader {
   }
 };
 
+// What a DVR sample receives light on, as DVR mode reads the occlusion map:
+// the unit normal away from the denser side (the negated gradient) and the
+// value under it (half a voxel back along the normal, or the sample's own
+// where that is larger). Not oriented in homogeneous regions.
+struct DvrReceiver {
+  vec3 normal{0.0f};
+  float value = 0.0f;  // data units
+  bool oriented = false;
+};
+template <class Sampler>
+PENUMBRA_HD DvrReceiver dvr_receiver(const VolumeView& volume, const Sampler& sampler, vec3 index, vec3 world,
+                                     float value) {
+  DvrReceiver r;
+  r.value = value;
+  const vec3 g = sampler.gradient(index) / volume.spacing;
+  const float length = glm::length(g);
+  if (!(length > 0.0f) || !is_finite(length)) return r;
+  r.normal = -g / length;
+  r.oriented = true;
+  const float under = sampler(volume.index_from_world(world - r.normal * (0.5f * volume.min_spacing())));
+  if (is_finite(under)) r.value = glm::max(value, under);
+  return r;
+}
+
+// DVR mode's soft shadow at a world point p toward `light`: the iso mode's
+// march (OcclusionQueries::soft_shadow, every occluder above the iso-value)
+// from a receiver oriented as above (its half-space taken out, the march
+// lifted off it), or, where the data is homogeneous, lifted toward the light
+// with nothing taken out. The march's arguments, for one lane or a batch
+// (occlusion_map.cpp evaluates it once per node of each light's grid).
+struct SoftShadowQuery {
+  vec3 p, n, to_light;
+  float distance, spread, own;
+};
+template <int K, class Sampler>
+PENUMBRA_HD SoftShadowQuery dvr_soft_shadow_query(const OcclusionQueries<K>& queries, const VolumeView& volume,
+                                                  const Sampler& sampler, ValueNormalisation normalise,
+                                                  const Light& light, vec3 p) {
+  const LightSample ls = sample_light(light, p);
+  SoftShadowQuery q{p, ls.to_light, ls.to_light, ls.distance, queries.light_spread(light, p), -1.0f};
+  const vec3 index = volume.index_from_world(p);
+  const DvrReceiver r = dvr_receiver(volume, sampler, index, p, sampler(index));
+  if (r.oriented) {
+    q.n = r.normal;
+    q.own = normalise(r.value);
+  }
+  return q;
+}
+template <int K>
+PENUMBRA_HD float soft_shadow(const OcclusionQueries<K>& queries, const SoftShadowQuery& q, float t) {
+  return queries.soft_shadow(q.p, q.n, q.to_light, q.distance, q.spread, t, q.own);
+}
+
+// A DVR sample's light visibility: the ambient occlusion (when it darkens the
+// lights) times, inside the volume's box, the light's soft-shadow grid.
+struct DvrVisibility {
+  const VolumeView* grids = nullptr;  // per light; null, or data == nullptr: unshadowed
+  Box3 box;
+  float ambient_occ = 1.0f;
+  PENUMBRA_HD vec3 operator()(int light, vec3 p, const LightSample&) const {
+    float visible = ambient_occ;
+    if (grids && grids[light].data && box.contains(p)) visible *= grids[light].sample(p);
+    return vec3(visible);
+  }
+};
+
 // DVR mode (Fig. 11): the same ambient occlusion for every DVR sample, with
-// the sample's value half a voxel up its gradient as the query; the lights
-// are unshadowed (local lighting), as in the paper's figure.
+// the sample's value half a voxel up its gradient as the query, and with soft
+// shadows from each light's grid (none: local lighting, as in the paper's
+// figure). Planes are shaded as in iso mode, their soft shadows marched.
 template <int K, class Sampler> struct DvrOcclusionLighting {
   const OcclusionShadingSetup<K>* setup;
   Sampler sampler;
   Shading shading;
+  const VolumeView* shadow_grids = nullptr;
 
   PENUMBRA_HD float ambient_at(const SamplePoint& p) const {
     const OcclusionShadingSetup<K>& s = *setup;
     if (!s.ambient_occlusion) return 1.0f;
-    const VolumeView& volume = s.lit_view->volume;
-    const vec3 g = sampler.gradient(p.index) / volume.spacing;
-    const float length = glm::length(g);
-    if (!(length > 0.0f) || !is_finite(length)) return 1.0f;  // homogeneous: no direction to look in
-    const vec3 n = -g / length;
-    const float under = sampler(volume.index_from_world(p.world - n * (0.5f * volume.min_spacing())));
-    const float query = s.normalise(glm::max(p.value, is_finite(under) ? under : p.value));
-    return s.queries.ambient(p.world, n, query);
+    const DvrReceiver r = dvr_receiver(s.lit_view->volume, sampler, p.index, p.world, p.value);
+    if (!r.oriented) return 1.0f;  // homogeneous: no direction to look in
+    return s.queries.ambient(p.world, r.normal, s.normalise(r.value));
   }
 
   PENUMBRA_HD vec3 sample(const SamplePoint& p) const {
     const OcclusionShadingSetup<K>& s = *setup;
     const float ao = ambient_at(p);
-    const ScatteringLighting<UniformVisibility> lighting{s.lit_view, UniformVisibility{s.ao_on_lights ? ao : 1.0f},
-                                                         shading};
+    const ScatteringLighting<DvrVisibility> lighting{
+        s.lit_view, DvrVisibility{shadow_grids, s.lit_view->box, s.ao_on_lights ? ao : 1.0f}, shading};
     return lighting.sample(p) + s.lit_view->material.albedo * p.color * (s.ambient * ao);
   }
 

@@ -1,0 +1,208 @@
+// occlusion-map's DVR mode with soft shadows (one grid per light, marched
+// through the moment pyramid): shadows where the geometry puts them, penumbrae
+// that follow the light's size, what rebuilds the grids, and the parameter
+// rule.
+#include "penumbra/analysis/image_metrics.h"
+#include "penumbra/backends/cpu/packets.h"
+#include "penumbra/base/error.h"
+#include "penumbra/techniques/registry.h"
+#include "test_scene.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <optional>
+
+namespace penumbra {
+namespace {
+
+using testing::antialiased_solid;
+using testing::procedural_scene;
+using testing::render_with;
+
+struct Ball {
+  vec3 centre;
+  float radius;
+};
+// A big ball lit from above and a small one between it and the light, both
+// opaque under a step TF at 0.5 (the iso-value), spacing 1, the volume
+// centred on the origin.
+const Ball kBig{vec3(-4.0f, 0.0f, -6.0f), 11.0f};
+const Ball kSmall{vec3(6.0f, 2.0f, 12.0f), 4.0f};
+const vec3 kLightDirection = glm::normalize(vec3(-0.45f, -0.1f, -1.0f));  // travel direction
+
+Scene shadowed_ball(int image_size, float intensity = 1.0f) {
+  const int n = 48;
+  Scene scene = procedural_scene("spheres", ivec3(n), image_size);
+  auto volume = std::make_shared<Volume>(ivec3(n), VoxelType::Float32);
+  float* v = volume->frame_as<float>(0);
+  const float c = 0.5f * float(n - 1);
+  for (int z = 0; z < n; ++z)
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) {
+        const vec3 p = vec3(x, y, z) - c;
+        *v++ = glm::max(antialiased_solid(glm::length(p - kBig.centre) - kBig.radius),
+                        antialiased_solid(glm::length(p - kSmall.centre) - kSmall.radius));
+      }
+  scene.set_volume(volume);
+  scene.set_transfer_function(testing::step_tf(0.5f, vec3(0.9f), 1.0f));
+  Light light = testing::directional_light(kLightDirection);
+  light.intensity = intensity;
+  scene.set_lights({light});
+  Material m;
+  m.ambient = 0.2f;
+  scene.set_material(m);
+  scene.set_camera(Camera::framing(Box3{vec3(-16.0f), vec3(16.0f)}, vec3(0.2f, -1.0f, 0.7f)));
+  return scene;
+}
+
+std::optional<float> hit(const Ball& b, const Ray& ray) {
+  const vec3 oc = ray.origin - b.centre;
+  const float half_b = glm::dot(oc, ray.direction);
+  const float disc = half_b * half_b - (glm::dot(oc, oc) - b.radius * b.radius);
+  if (disc < 0.0f) return std::nullopt;
+  return -half_b - std::sqrt(disc);
+}
+
+// Pixels that see the big ball's surface facing the light (cosine > 0.3),
+// whose light ray passes the small ball's centre at a distance in [lo, hi):
+// the mean light share, (image - ambient) / (unshadowed - ambient) in green.
+struct Share {
+  double mean = 0.0;
+  int pixels = 0;
+};
+Share light_share(const Scene& scene, const Image& image, const Image& unshadowed, const Image& ambient, float lo,
+                  float hi) {
+  const CameraView cam = scene.camera().view();
+  const vec3 to_light = -kLightDirection;
+  Share s;
+  for (int y = 0; y < image.height(); ++y) {
+    for (int x = 0; x < image.width(); ++x) {
+      const Ray ray = cam.pixel_ray(float(x) + 0.5f, float(y) + 0.5f, image.width(), image.height());
+      const std::optional<float> t = hit(kBig, ray);
+      const std::optional<float> t_small = hit(kSmall, ray);
+      if (!t || (t_small && *t_small < *t)) continue;
+      const vec3 p = ray.origin + *t * ray.direction;
+      if (glm::dot(glm::normalize(p - kBig.centre), to_light) < 0.3f) continue;
+      const vec3 to_centre = kSmall.centre - p;
+      const float miss = glm::dot(to_centre, to_light) > 0.0f ? glm::length(glm::cross(to_centre, to_light)) : 1e9f;
+      const double full = double(unshadowed.at(x, y).g - ambient.at(x, y).g);
+      if (miss < lo || miss >= hi || full < 0.05) continue;
+      s.mean += double(image.at(x, y).g - ambient.at(x, y).g) / full;
+      ++s.pixels;
+    }
+  }
+  s.mean /= std::max(1, s.pixels);
+  return s;
+}
+
+ParameterSettings dvr(const char* shadows, double light_size_deg) {
+  return {{"mode", std::string("dvr")}, {"shadows", std::string(shadows)}, {"iso_value", 0.5},
+          {"ambient_occlusion", false}, {"light_size_deg", light_size_deg}};
+}
+
+// The small ball's shadow on the big one: dark inside the geometric umbra,
+// none well outside it; a wider light reaches further out.
+TEST(OcclusionMapDvr, ShadowsFallWhereTheGeometryPutsThem) {
+  const Scene scene = shadowed_ball(128);
+  const Image none = render_with(scene, "occlusion-map", dvr("none", 0.0));
+  const Image ambient = render_with(shadowed_ball(128, 0.0f), "occlusion-map", dvr("none", 0.0));
+  const float r = kSmall.radius;
+  double rim_small = 0.0;
+  for (const double size : {1.0, 16.0}) {
+    const Image soft = render_with(scene, "occlusion-map", dvr("soft", size));
+    const Share umbra = light_share(scene, soft, none, ambient, 0.0f, r - 1.5f);
+    const Share rim = light_share(scene, soft, none, ambient, r, r + 3.0f);
+    const Share lit = light_share(scene, soft, none, ambient, r + 6.0f, 1e9f);
+    std::printf("[occlusion-map dvr] light %2.0f deg: light share in the umbra %.4f (%d px), just outside it %.4f "
+                "(%d px), lit %.4f (%d px)\n",
+                size, umbra.mean, umbra.pixels, rim.mean, rim.pixels, lit.mean, lit.pixels);
+    EXPECT_GT(umbra.pixels, 30);
+    EXPECT_GT(lit.pixels, 200);
+    EXPECT_LT(umbra.mean, 0.04) << size;
+    if (size == 1.0) {
+      EXPECT_GT(lit.mean, 0.9);
+      rim_small = rim.mean;
+    } else {
+      EXPECT_LT(rim.mean, rim_small - 0.04);
+    }
+  }
+}
+
+// The grids' marches run as SIMD packets where the CPU has them: the same
+// image as the scalar march, on every packet width this CPU and build have.
+TEST(OcclusionMapDvr, PacketGridsMatchTheScalarMarch) {
+  const Scene scene = shadowed_ball(48);
+  const SimdMode saved = simd_mode();
+  set_simd_mode(SimdMode::Off);
+  const Image scalar = render_with(scene, "occlusion-map", dvr("soft", 4.0));
+  int widths = 0;
+  for (const char* name : {"avx2", "avx512"}) {
+    try {
+      set_simd_mode(parse_simd_mode(name));
+    } catch (const InvalidArgument&) {
+      continue;  // not on this CPU or in this build
+    }
+    const Image packets = render_with(scene, "occlusion-map", dvr("soft", 4.0));
+    EXPECT_LE(rmse(packets, scalar), 1e-5) << name;
+    ++widths;
+  }
+  set_simd_mode(saved);
+  std::printf("[occlusion-map dvr] packet grids checked at %d widths\n", widths);
+}
+
+// The grids depend on the data, the iso-value, the lights' placement and size
+// and the march's parameters; a TF, camera or AO change keeps them, and iso
+// mode frees them.
+TEST(OcclusionMapDvr, GridsRebuildForLightsAndIsoValueNotForTfOrCamera) {
+  Scene scene = shadowed_ball(16);
+  const TechniqueInfo& info = find_technique("occlusion-map");
+  ParameterValues params(info.parameters);
+  params.set("mode", std::string("dvr"));
+  params.set("iso_value", 0.5);
+  auto technique = info.create();
+  Image image;
+  technique->prepare(scene, params);
+  technique->render(scene, image);
+  EXPECT_EQ(technique->rebuilds(), 2u);  // the pyramid and the light's grid
+  // One float per node of a 24^3 grid (resolution 0.5) on top of the map.
+  const std::uint64_t with_grid = technique->aux_bytes();
+
+  scene.set_transfer_function(testing::step_tf(0.4f, vec3(0.5f), 1.0f));
+  scene.set_camera(Camera::framing(scene.volume().world_box(), vec3(1.0f, 0.2f, 0.3f)));
+  params.set("ambient_occlusion", false);
+  technique->prepare(scene, params);
+  technique->render(scene, image);
+  EXPECT_EQ(technique->rebuilds(), 2u);
+
+  Light light = scene.lights()[0];
+  light.direction = glm::normalize(vec3(0.3f, 0.2f, -1.0f));
+  scene.set_lights({light});
+  technique->prepare(scene, params);
+  EXPECT_EQ(technique->rebuilds(), 3u);
+  params.set("iso_value", 0.6);
+  technique->prepare(scene, params);
+  EXPECT_EQ(technique->rebuilds(), 4u);
+  params.set("light_size_deg", 8.0);
+  technique->prepare(scene, params);
+  EXPECT_EQ(technique->rebuilds(), 5u);
+  technique->render(scene, image);
+
+  params.set("mode", std::string("iso"));
+  technique->prepare(scene, params);
+  EXPECT_EQ(technique->aux_bytes() + 24u * 24u * 24u * sizeof(float), with_grid);
+}
+
+// Hard shadows are iso-test rays from a surface: mode dvr names the parameter.
+TEST(OcclusionMapDvr, HardShadowsNeedIsoMode) {
+  const Scene scene = shadowed_ball(8);
+  try {
+    render_with(scene, "occlusion-map", {{"mode", std::string("dvr")}, {"shadows", std::string("hard")}});
+    ADD_FAILURE() << "no error";
+  } catch (const InvalidArgument& e) {
+    EXPECT_EQ(e.name(), "shadows") << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace penumbra
