@@ -98,7 +98,7 @@ class OcclusionMap final : public Technique {
 
   // DVR mode's soft shadows: one grid per light over the volume's box, at the
   // map's level-0 resolution, each node marched once (occlusion_shading.h,
-  // dvr_soft_shadow). A grid is rebuilt when its light moves or changes
+  // dvr_soft_shadow_query). A grid is rebuilt when its light moves or changes
   // size, or when the pyramid, the iso-value or the march's parameters
   // change; a TF or camera change keeps it.
   void update_dvr_shadows(const Scene& scene, const ParameterValues& params) {
