@@ -196,15 +196,15 @@ PENUMBRA_HD float soft_shadow(const OcclusionQueries<K>& queries, const SoftShad
 }
 
 // A DVR sample's light visibility: the ambient occlusion (when it darkens the
-// lights) times, inside the volume's box, the light's soft-shadow grid.
+// lights) times, inside the volume's box, the light's soft-shadow grid
+// (lighting.h's cached_visibility; unshadowed without a grid).
 struct DvrVisibility {
   const VolumeView* grids = nullptr;  // per light; null, or data == nullptr: unshadowed
   Box3 box;
   float ambient_occ = 1.0f;
-  PENUMBRA_HD vec3 operator()(int light, vec3 p, const LightSample&) const {
-    float visible = ambient_occ;
-    if (grids && grids[light].data && box.contains(p)) visible *= grids[light].sample(p);
-    return vec3(visible);
+  PENUMBRA_HD vec3 operator()(int light, vec3 p, const LightSample& ls) const {
+    if (!grids) return vec3(ambient_occ);
+    return ambient_occ * cached_visibility<ScalarLanes>(grids[light], box, UniformVisibility{1.0f}, light, p, ls, true);
   }
 };
 
