@@ -151,6 +151,50 @@ TEST(OcclusionMapDvr, PacketGridsMatchTheScalarMarch) {
   std::printf("[occlusion-map dvr] packet grids checked at %d widths\n", widths);
 }
 
+// DVR samples are lit as packets of the shared loop where the CPU has them
+// (ambient occlusion, the shadow grids' lookups, Phong normals): the scalar
+// path's image on a smooth, semi-transparent volume that is not two-valued
+// (Marschner-Lobb) and on balls in empty space (where neighbouring lanes'
+// AO regions differ in whether anything reaches the query), at two AO
+// combinations.
+TEST(OcclusionMapDvr, PacketSamplesMatchTheScalarPath) {
+  Scene wave = procedural_scene("marschner-lobb", ivec3(41), 64);
+  wave.set_transfer_function(testing::step_tf(0.4f, vec3(0.9f, 0.8f, 0.7f), 0.5f));
+  wave.set_camera(Camera::framing(wave.volume().world_box(), vec3(0.5f, -1.0f, 0.6f)));
+  wave.set_lights({testing::directional_light(glm::normalize(vec3(-0.3f, 0.6f, -1.0f)))});
+  Material m;
+  m.ambient = 0.3f;
+  m.shading = Shading::Phong;
+  wave.set_material(m);
+  const SimdMode saved = simd_mode();
+  for (const auto& [name, scene] : {std::pair{"marschner-lobb", wave}, std::pair{"spheres", testing::lit_spheres(64)}}) {
+    for (const char* combine : {"product", "max"}) {
+      const ParameterSettings params{
+          {"mode", std::string("dvr")}, {"iso_value", 0.45}, {"ao_combine", std::string(combine)}};
+      set_simd_mode(SimdMode::Off);
+      RenderStats scalar_stats;
+      const Image scalar = render_with(scene, "occlusion-map", params, &scalar_stats);
+      ASSERT_EQ(scalar_stats.simd, SimdTarget::Scalar);
+      testing::save_test_image(scalar, std::string("occlusion-map-dvr-packets-") + name + "-" + combine);
+      for (const char* target : {"avx2", "avx512"}) {
+        try {
+          set_simd_mode(parse_simd_mode(target));
+        } catch (const InvalidArgument&) {
+          continue;  // not on this CPU or in this build
+        }
+        RenderStats stats;
+        const Image packets = render_with(scene, "occlusion-map", params, &stats);
+        EXPECT_EQ(stats.simd, active_simd_target()) << target;  // the samples did run as packets
+        const double error = rmse(packets, scalar);
+        std::printf("[occlusion-map dvr] %s, %s packets, AO %s: rmse %.2e against scalar\n", name, target, combine,
+                    error);
+        EXPECT_LE(error, 3e-6) << name << " " << target << " " << combine;
+      }
+    }
+  }
+  set_simd_mode(saved);
+}
+
 // The grids depend on the data, the iso-value, the lights' placement and size
 // and the march's parameters; a TF, camera or AO change keeps them, and iso
 // mode frees them.

@@ -189,13 +189,34 @@ class OcclusionMap final : public Technique {
     }
     if (active_device() == Device::Cuda) note_cpu_fallback("occlusion-map in mode dvr");
     const Shading shading = scene.material().shading;
+    const VolumeView* grids = dvr_shadows_.built() ? dvr_shadows_.views() : nullptr;
+    if constexpr (K == 2) {
+      // Packets (occlusion_map_packets.cpp) read the volume through
+      // AnyVoxelSampler; one lighting type serves every voxel type.
+      if (dvr_packets_fit(setup.queries, lit)) {
+        const AnyVoxelSampler any(lit.volume.data, lit.volume.dims, lit.volume.type);
+        render_image(
+            lit, [&](const auto&) { return DvrOcclusionLighting<2, AnyVoxelSampler>{&setup, any, shading, grids}; },
+            image, stats);
+        return;
+      }
+    }
     render_image(
         lit,
         [&](const auto& sampler) {
-          return DvrOcclusionLighting<K, std::decay_t<decltype(sampler)>>{
-              &setup, sampler, shading, dvr_shadows_.built() ? dvr_shadows_.views() : nullptr};
+          return DvrOcclusionLighting<K, std::decay_t<decltype(sampler)>>{&setup, sampler, shading, grids};
         },
         image, stats);
+  }
+
+  // Whether DVR mode's samples can be lit as packets: a SIMD target for this
+  // view, and 32-bit gather offsets that reach every node of the pyramid and
+  // every byte of the shadow grids.
+  bool dvr_packets_fit(const OcclusionQueries<2>& queries, const RenderView& view) const {
+    if (packet_target(view) == SimdTarget::Scalar || !queries.packets_fit()) return false;
+    constexpr std::uint64_t limit = (std::uint64_t(1) << 31) - 64;
+    const ivec3 d = dvr_shadows_.dims();
+    return !dvr_shadows_.built() || std::uint64_t(d.x) * std::uint64_t(d.y) * std::uint64_t(d.z) * 4 < limit;
   }
 
   SceneResources resources_;

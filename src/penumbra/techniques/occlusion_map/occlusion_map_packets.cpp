@@ -1,8 +1,11 @@
 // SIMD unit (cmake/PenumbraSimd.cmake): occlusion-map's soft-shadow marches,
-// 8 or 16 at a time (soft_shadow_batch.h). Everything here is inlined into
-// the one flatten function or named after this unit's target (see
+// 8 or 16 at a time (soft_shadow_batch.h), and DVR mode's samples as packets
+// of the shared loop (occlusion_shading.h). Everything here is inlined into
+// the flatten functions or named after this unit's target (see
 // backends/cpu/packet_render.h on why).
+#include "penumbra/backends/cpu/packet_render.h"
 #include "penumbra/backends/cpu/simd_lanes.h"
+#include "penumbra/techniques/occlusion_map/occlusion_shading.h"
 #include "penumbra/techniques/occlusion_map/soft_shadow_batch.h"
 
 namespace penumbra {
@@ -36,3 +39,5 @@ template void march_soft_shadows<SimdTarget::PENUMBRA_SIMD_TARGET>(const Occlusi
                                                                      const SoftShadowQueries&, float*);
 
 }  // namespace penumbra
+
+PENUMBRA_INSTANTIATE_PACKETS(DvrOcclusionLighting<2, AnyVoxelSampler>);

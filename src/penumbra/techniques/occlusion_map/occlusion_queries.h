@@ -112,8 +112,31 @@ template <int K> struct OcclusionQueries {
   }
   // The same with the level's sigma given.
   PENUMBRA_HD float occlusion(float level, float sigma, vec3 c, float t) const {
-    if (pyramid.maximum(level, c) < t) return 0.0f;
-    return inside_share(c, sigma) * occluded_fraction<K>(pyramid.sample(level, c), t);
+    return occlusion_lanes<ScalarLanes>(level, sigma, c, t, true);
+  }
+  // The same on any lane type, each lane with its own query t; 0 on lanes
+  // that are off. Four moments only on ScalarLanes.
+  template <class L>
+  PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Float occlusion_lanes(typename L::Float level, typename L::Float sigma,
+                                                                     const typename L::Vec3& c, typename L::Float t,
+                                                                     typename L::Mask active) const {
+    using F = typename L::Float;
+    using M = typename L::Mask;
+    const M occluding = active & (pyramid.template maximum_lanes<L>(level, c, active) >= t);
+    if (none(occluding)) return F(0.0f);
+    F m[K];
+    pyramid.template sample_lanes<L>(level, c, occluding, m);
+    F fraction;
+    if constexpr (K == 2) {
+      // chebyshev_occlusion (moment_bounds.h) per lane.
+      const F variance = max(m[1] - m[0] * m[0], F(kMinMomentVariance));
+      const F d = t - m[0];
+      fraction = select(t <= m[0], F(1.0f), variance / (variance + d * d));
+    } else {
+      static_assert(L::kWidth == 1, "four moments have no packet form");
+      fraction = occluded_fraction<K>(vec4(m[0], m[1], m[2], m[3]), t);
+    }
+    return select(occluding, inside_share_lanes<L>(c, sigma) * fraction, F(0.0f));
   }
 
   // The soft-shadow sample's occluded fraction of level `level`'s region
@@ -179,16 +202,23 @@ template <int K> struct OcclusionQueries {
   }
 
   // Unoccluded fraction of the surroundings of p (unit normal n): 1 - occlusion.
-  PENUMBRA_HD float ambient(vec3 p, vec3 n, float t) const {
-    float worst = 0.0f, sum = 0.0f, open = 1.0f;
+  PENUMBRA_HD float ambient(vec3 p, vec3 n, float t) const { return ambient_lanes<ScalarLanes>(p, n, t, true); }
+  // The same for a packet of points, each with its own query (1 on lanes
+  // that are off): DVR mode's packets (occlusion_shading.h).
+  template <class L>
+  PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Float ambient_lanes(const typename L::Vec3& p,
+                                                                   const typename L::Vec3& n, typename L::Float t,
+                                                                   typename L::Mask active) const {
+    using F = typename L::Float;
+    F worst(0.0f), sum(0.0f), open(1.0f);
     const int levels = glm::min(kAmbientOcclusionLevels, pyramid.level_count);
     for (int k = 0; k < levels; ++k) {
       const float sigma = pyramid.sigma_at(k);
-      const vec3 q = p + n * (ao_offset * sigma);
-      const float occlusion = this->occlusion(float(k), sigma, q, t);
-      worst = glm::max(worst, occlusion);
-      sum += occlusion;
-      open *= 1.0f - occlusion;
+      const typename L::Vec3 q = p + n * (ao_offset * sigma);
+      const F occlusion = occlusion_lanes<L>(F(float(k)), F(sigma), q, t, active);
+      worst = max(worst, occlusion);
+      sum = sum + occlusion;
+      open = open * (1.0f - occlusion);
     }
     switch (ao_combine) {
       case AoCombine::Mean: return 1.0f - sum / float(levels);

@@ -20,7 +20,7 @@ enum class ShadowMode : std::uint8_t { None, Hard, Soft };
 struct ValueNormalisation {
   float lo = 0.0f;
   float scale = 1.0f;
-  PENUMBRA_HD float operator()(float value) const { return (value - lo) * scale; }
+  template <class F> PENUMBRA_HD F operator()(F value) const { return (value - lo) * scale; }
 };
 
 // Everything the per-point shading reads, shared by every pixel.
@@ -86,6 +86,10 @@ template <int K, class Sampler> struct SurfaceVisibility {
 struct UniformVisibility {
   float value = 1.0f;
   PENUMBRA_HD vec3 operator()(int, vec3, const LightSample&) const { return vec3(value); }
+  template <class L>
+  PENUMBRA_HD typename L::Vec3 lanes(int, const typename L::Vec3&, const LightSampleL<L>&, typename L::Mask) const {
+    return typename L::Vec3(value);
+  }
 };
 
 // Shading of isosurface hits and plane hits (isosurface mode).
@@ -145,25 +149,36 @@ template <int K, class Sampler> struct IsosurfaceShader {
 // What a DVR sample receives light on, as DVR mode reads the occlusion map:
 // the unit normal away from the denser side (the negated gradient) and the
 // value under it (half a voxel back along the normal, or the sample's own
-// where that is larger). Not oriented in homogeneous regions.
-struct DvrReceiver {
-  vec3 normal{0.0f};
-  float value = 0.0f;  // data units
-  bool oriented = false;
+// where that is larger). Not oriented in homogeneous regions (nor in lanes
+// that are off). For one lane or a packet.
+template <class L> struct DvrReceiverL {
+  typename L::Vec3 normal{0.0f};
+  typename L::Float value{0.0f};  // data units
+  typename L::Mask oriented{false};
 };
+using DvrReceiver = DvrReceiverL<ScalarLanes>;
+template <class L, class Sampler>
+PENUMBRA_HD PENUMBRA_FORCE_INLINE DvrReceiverL<L> dvr_receiver(const VolumeView& volume, const Sampler& sampler,
+                                                               const typename L::Vec3& index,
+                                                               const typename L::Vec3& world, typename L::Float value,
+                                                               typename L::Mask active) {
+  using V = typename L::Vec3;
+  DvrReceiverL<L> r;
+  r.value = value;
+  const V g = sampler.template gradient<L>(index) / V(volume.spacing);
+  const typename L::Float len = length(g);
+  r.oriented = active & (len > 0.0f) & finite(len);
+  if (none(r.oriented)) return r;
+  r.normal = select(r.oriented, -g / len, V(0.0f));
+  const V under_at = (world - r.normal * (0.5f * volume.min_spacing()) - V(volume.origin)) / V(volume.spacing);
+  const typename L::Float under = sampler.template sample<L>(under_at);
+  r.value = select(r.oriented & finite(under), max(value, under), value);
+  return r;
+}
 template <class Sampler>
 PENUMBRA_HD DvrReceiver dvr_receiver(const VolumeView& volume, const Sampler& sampler, vec3 index, vec3 world,
                                      float value) {
-  DvrReceiver r;
-  r.value = value;
-  const vec3 g = sampler.gradient(index) / volume.spacing;
-  const float length = glm::length(g);
-  if (!(length > 0.0f) || !is_finite(length)) return r;
-  r.normal = -g / length;
-  r.oriented = true;
-  const float under = sampler(volume.index_from_world(world - r.normal * (0.5f * volume.min_spacing())));
-  if (is_finite(under)) r.value = glm::max(value, under);
-  return r;
+  return dvr_receiver<ScalarLanes>(volume, sampler, index, world, value, true);
 }
 
 // DVR mode's soft shadow at a world point p toward `light`: the iso mode's
@@ -195,16 +210,20 @@ PENUMBRA_HD float soft_shadow(const OcclusionQueries<K>& queries, const SoftShad
   return queries.soft_shadow(q.p, q.n, q.to_light, q.distance, q.spread, t, q.own);
 }
 
-// A DVR sample's light visibility: the ambient occlusion (when it darkens the
-// lights) times, inside the volume's box, the light's soft-shadow grid
-// (lighting.h's cached_visibility; unshadowed without a grid).
+// A DVR sample's light visibility: inside the volume's box, the light's
+// soft-shadow grid (lighting.h's cached_visibility; unshadowed without a
+// grid). The ambient occlusion multiplies the lit result (DvrOcclusionLighting).
 struct DvrVisibility {
   const VolumeView* grids = nullptr;  // per light; null, or data == nullptr: unshadowed
   Box3 box;
-  float ambient_occ = 1.0f;
   PENUMBRA_HD vec3 operator()(int light, vec3 p, const LightSample& ls) const {
-    if (!grids) return vec3(ambient_occ);
-    return ambient_occ * cached_visibility<ScalarLanes>(grids[light], box, UniformVisibility{1.0f}, light, p, ls, true);
+    return lanes<ScalarLanes>(light, p, ls, true);
+  }
+  template <class L>
+  PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Vec3 lanes(int light, const typename L::Vec3& p,
+                                                           const LightSampleL<L>& ls, typename L::Mask active) const {
+    if (!grids) return typename L::Vec3(1.0f);
+    return cached_visibility<L>(grids[light], box, UniformVisibility{1.0f}, light, p, ls, active);
   }
 };
 
@@ -212,29 +231,39 @@ struct DvrVisibility {
 // the sample's value half a voxel up its gradient as the query, and with soft
 // shadows from each light's grid (none: local lighting, as in the paper's
 // figure). Planes are shaded as in iso mode, their soft shadows marched.
+// Samples are lit one at a time or as CPU packets (two moments; the packets
+// read the volume through AnyVoxelSampler, occlusion_map_packets.cpp).
 template <int K, class Sampler> struct DvrOcclusionLighting {
   const OcclusionShadingSetup<K>* setup;
   Sampler sampler;
   Shading shading;
   const VolumeView* shadow_grids = nullptr;
 
-  PENUMBRA_HD float ambient_at(const SamplePoint& p) const {
+  template <class L>
+  PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Float ambient_at(const SamplePointL<L>& p,
+                                                                 typename L::Mask active) const {
+    using F = typename L::Float;
     const OcclusionShadingSetup<K>& s = *setup;
-    if (!s.ambient_occlusion) return 1.0f;
-    const DvrReceiver r = dvr_receiver(s.lit_view->volume, sampler, p.index, p.world, p.value);
-    if (!r.oriented) return 1.0f;  // homogeneous: no direction to look in
-    return s.queries.ambient(p.world, r.normal, s.normalise(r.value));
+    if (!s.ambient_occlusion) return F(1.0f);
+    const DvrReceiverL<L> r = dvr_receiver<L>(s.lit_view->volume, sampler, p.index, p.world, p.value, active);
+    if (none(r.oriented)) return F(1.0f);  // homogeneous: no direction to look in
+    return s.queries.template ambient_lanes<L>(p.world, r.normal, s.normalise(r.value), r.oriented);
   }
 
-  PENUMBRA_HD vec3 sample(const SamplePoint& p) const {
+  template <class L>
+  PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Vec3 sample(const SamplePointL<L>& p, typename L::Mask active) const {
     const OcclusionShadingSetup<K>& s = *setup;
-    const float ao = ambient_at(p);
-    const ScatteringLighting<DvrVisibility> lighting{
-        s.lit_view, DvrVisibility{shadow_grids, s.lit_view->box, s.ao_on_lights ? ao : 1.0f}, shading};
-    return lighting.sample(p) + s.lit_view->material.albedo * p.color * (s.ambient * ao);
+    const typename L::Float ao = ambient_at<L>(p, active);
+    const ScatteringLighting<DvrVisibility> lighting{s.lit_view, DvrVisibility{shadow_grids, s.lit_view->box},
+                                                     shading};
+    const typename L::Vec3 lit = lighting.template sample<L>(p, active);
+    return (s.ao_on_lights ? lit * ao : lit) + s.lit_view->material.albedo * p.color * (s.ambient * ao);
   }
+  PENUMBRA_HD vec3 sample(const SamplePoint& p) const { return sample<ScalarLanes>(p, true); }
 
   PENUMBRA_HD vec3 plane(const PlaneHit& h) const { return IsosurfaceShader<K, Sampler>{setup, sampler}.plane(h); }
 };
+
+PENUMBRA_PACKET_LIGHTING(DvrOcclusionLighting<2, AnyVoxelSampler>);
 
 }  // namespace penumbra

@@ -124,6 +124,7 @@ class LightVisibilityCaches {
   }
 
   const VolumeView* views() const { return views_.data(); }
+  ivec3 dims() const { return dims_; }  // every light's grid
   std::uint64_t bytes() const {
     std::uint64_t total = 0;
     for (const auto& c : caches_) total += c ? c->total_bytes() : 0;
