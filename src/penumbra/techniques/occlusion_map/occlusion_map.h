@@ -56,7 +56,8 @@
 //            AO from four pyramid lookups along the normal; per light a hard
 //            shadow ray or a soft-shadow march. dvr: the shared compositing
 //            loop with the AO per sample and one trilinear read of each
-//            light's grid; planes as in iso mode.
+//            light's grid, as CPU packets for two moments (one lane at a
+//            time for four); planes as in iso mode.
 // Outside the volume's box nothing occludes: a region reaching past the box
 // counts only its inside share (occlusion_queries.h).
 // Clip planes cut the surface, the hard-shadow rays and the map: clipped
