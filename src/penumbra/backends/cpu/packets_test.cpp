@@ -156,16 +156,26 @@ double max_difference(const Image& a, const Image& b) {
   return m;
 }
 
+// Modes of a technique that take another packet path than its defaults:
+// occlusion-map's DVR mode lights every DVR sample as packets.
+const std::vector<std::pair<std::string, ParameterSettings>> kPacketVariants = {
+    {"occlusion-map", {{"mode", std::string("dvr")}}}};
+
 TEST(PacketPath, EveryTechniqueMatchesTheScalarPath) {
   const std::vector<SimdMode> modes = packet_modes();
   if (modes.empty()) GTEST_SKIP() << "this CPU or build has no SIMD target";
   SimdModeGuard guard;
+  std::vector<std::pair<const TechniqueInfo*, ParameterSettings>> cases;
+  for (const TechniqueInfo& info : technique_registry()) cases.push_back({&info, {}});
+  for (const auto& [name, settings] : kPacketVariants) cases.push_back({&find_technique(name), settings});
   for (const PacketScene& ps : packet_scenes()) {
-    for (const TechniqueInfo& info : technique_registry()) {
-      SCOPED_TRACE(ps.name + " x " + info.name);
+    for (const auto& [technique_info, variant] : cases) {
+      const TechniqueInfo& info = *technique_info;
+      SCOPED_TRACE(ps.name + " x " + info.name + (variant.empty() ? "" : " (variant)"));
       auto technique = info.create();
       ParameterValues params(info.parameters);
       params.apply(quick_params(info), true);
+      params.apply(variant, true);
       set_simd_mode(SimdMode::Off);
       technique->prepare(ps.scene, params);
       RenderStats scalar_stats;
