@@ -7,7 +7,8 @@
 #      and after: no rebuild);
 #   2. frames at 512 x 512 (`penumbra bench`, median of FRAMES frames) on the
 #      engine CT and the head CT: Phong (no AO, no shadows), AO, hard shadows
-#      (HS), soft shadows (SS), and AO + SS together;
+#      (HS), soft shadows (SS), and AO + SS together; and DVR mode (Fig. 11)
+#      with AO and soft shadows;
 #   3. with `accuracy`: the occluded-fraction error of the 2- and 4-moment
 #      bounds against brute force over whole volumes (about a minute more).
 # The measurements of 1 and 3 are disabled tests in penumbra_tests
@@ -52,15 +53,15 @@ for name, source in (("engine", "engine-directional.json"), ("head", "head-direc
 PY
 
 echo "## frames at 512x512 (penumbra bench --simd ${SIMD:-auto}, median of $frames frames)"
-echo "| data set | iso_value | Phong ms | AO ms | HS ms | SS ms | AO+SS ms |"
-echo "|---|---|---|---|---|---|---|"
+echo "| data set | iso_value | Phong ms | AO ms | HS ms | SS ms | AO+SS ms | DVR AO+SS ms |"
+echo "|---|---|---|---|---|---|---|---|"
 for item in engine:0.5 head:0.47; do
   name=${item%%:*}
   iso=${item##*:}
   row="| $name | $iso |"
   for mode in "ambient_occlusion=false shadows=none" "ambient_occlusion=true shadows=none" \
               "ambient_occlusion=false shadows=hard" "ambient_occlusion=false shadows=soft" \
-              "ambient_occlusion=true shadows=soft"; do
+              "ambient_occlusion=true shadows=soft" "mode=dvr ambient_occlusion=true shadows=soft"; do
     args=(--param iso_value=$iso)
     for p in $mode; do args+=(--param "$p"); done
     ms=$("$bin" --simd "${SIMD:-auto}" bench "$out/$name.json" --technique occlusion-map "${args[@]}" --frames "$frames" --size 512x512 2>/dev/null |
