@@ -24,6 +24,7 @@
 // so the sharp bound can only fall) and exact at every support point of a distribution with
 // at most three values. The result is clamped to the two-moment bound, which
 // only matters where rounding makes the four-moment reconstruction unreliable.
+#include "penumbra/base/lanes.h"
 #include "penumbra/base/math.h"
 
 namespace penumbra {
@@ -37,11 +38,15 @@ inline constexpr float kMinMomentVariance = 1e-7f;
 // a bound noticeably only for regions of almost one value.
 inline constexpr double kMomentBias = 2e-5;
 
+// Chebyshev's one-sided bound on the share above t of values with mean m1
+// and second moment m2, on one lane (float) or a packet (base/lanes.h).
+template <class F> PENUMBRA_HD PENUMBRA_FORCE_INLINE F chebyshev_occlusion_lanes(F m1, F m2, F t) {
+  const F variance = max(m2 - m1 * m1, F(kMinMomentVariance));
+  const F d = t - m1;
+  return select(t <= m1, F(1.0f), variance / (variance + d * d));
+}
 PENUMBRA_HD inline float chebyshev_occlusion(float m1, float m2, float t) {
-  if (t <= m1) return 1.0f;
-  const float variance = glm::max(m2 - m1 * m1, kMinMomentVariance);
-  const float d = t - m1;
-  return variance / (variance + d * d);
+  return chebyshev_occlusion_lanes<float>(m1, m2, t);
 }
 
 PENUMBRA_HD inline float hamburger_occlusion(vec4 moments, float t) {

@@ -128,10 +128,7 @@ template <int K> struct OcclusionQueries {
     pyramid.template sample_lanes<L>(level, c, occluding, m);
     F fraction;
     if constexpr (K == 2) {
-      // chebyshev_occlusion (moment_bounds.h) per lane.
-      const F variance = max(m[1] - m[0] * m[0], F(kMinMomentVariance));
-      const F d = t - m[0];
-      fraction = select(t <= m[0], F(1.0f), variance / (variance + d * d));
+      fraction = chebyshev_occlusion_lanes<F>(m[0], m[1], t);
     } else {
       static_assert(L::kWidth == 1, "four moments have no packet form");
       fraction = occluded_fraction<K>(vec4(m[0], m[1], m[2], m[3]), t);
