@@ -25,5 +25,17 @@ paste -d '\t' <(nm -p --defined-only "$out" | awk '{print $2 " " $3}') \
   awk -F'\t' -v suffix=".penumbra_${target}" '
     { split($1, kind_name, " "); kind = kind_name[1]; name = kind_name[2] }
     kind == "W" && $2 !~ /N_AVX2::|N_AVX3::|\(penumbra::SimdTarget\)[12]/ { print name " " name suffix }' > "$map"
-if [ -s "$map" ]; then objcopy --redefine-syms="$map" "$out"; fi
+# A constructor's or destructor's COMDAT group is named by a local C5/D5
+# symbol, not by the function: left as is, the linker would keep another
+# unit's group of that name and drop this one, and the calls here to the
+# renamed function would resolve to address 0. So every group holding a
+# renamed function's code is renamed with it.
+if [ -s "$map" ]; then
+  readelf -gW "$out" | awk -v suffix=".penumbra_${target}" '
+    NR == FNR { renamed[$1] = 1; next }
+    /^COMDAT group section/ { match($0, /\[[^]]*\] contains/); group = substr($0, RSTART + 1, RLENGTH - 11) }
+    $NF ~ /^\.text\./ { name = substr($NF, 7); if ((name in renamed) && !(group in renamed) && !(group in done)) {
+        print group " " group suffix; done[group] = 1 } }' "$map" - >> "$map"
+  objcopy --redefine-syms="$map" "$out"
+fi
 rm -f "$map"
