@@ -111,9 +111,9 @@ inline constexpr float kMaxOpticalDepth = 11.5f;
 // scaled by density_scale, for the W rays of `rays` whose lane is on.
 // Respects clip planes; skips empty macrocells.
 template <class L, class Sampler>
-PENUMBRA_HD typename L::Float march_transmittance(const RenderView& v, const Sampler& sampler, const Ray* rays,
-                                                  const float* t_max, float density_scale, typename L::Mask lanes,
-                                                  RayStats& stats) {
+PENUMBRA_HD PENUMBRA_OUTLINED_MARCH typename L::Float
+march_transmittance(const RenderView& v, const Sampler& sampler, const Ray* rays, const float* t_max,
+                    float density_scale, typename L::Mask lanes, RayStats& stats) {
   using F = typename L::Float;
   using V = typename L::Vec3;
   using M = typename L::Mask;
