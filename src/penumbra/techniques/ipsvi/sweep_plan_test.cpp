@@ -17,7 +17,7 @@
 namespace penumbra {
 namespace {
 
-constexpr int kWidth = 64, kHeight = 48;
+constexpr int kPlanWidth = 64, kPlanHeight = 48;
 
 CameraView camera(bool orthographic) {
   Camera c;
@@ -33,7 +33,7 @@ CameraView camera(bool orthographic) {
 // Pixel coordinates of a world point (false behind the camera).
 bool to_pixel(const CameraView& c, vec3 p, vec2& pixel) {
   const vec3 q = p - c.eye;
-  const float aspect = float(kWidth) / float(kHeight);
+  const float aspect = float(kPlanWidth) / float(kPlanHeight);
   float sx = glm::dot(q, c.right), sy = glm::dot(q, c.up);
   if (!c.orthographic) {
     const float z = glm::dot(q, c.forward);
@@ -41,9 +41,9 @@ bool to_pixel(const CameraView& c, vec3 p, vec2& pixel) {
     sx /= z;
     sy /= z;
   }
-  pixel = vec2((sx / (c.half_height * aspect) + 1.0f) * 0.5f * float(kWidth),
-               (1.0f - sy / c.half_height) * 0.5f * float(kHeight));
-  return pixel.x >= 0.0f && pixel.y >= 0.0f && pixel.x < float(kWidth) && pixel.y < float(kHeight);
+  pixel = vec2((sx / (c.half_height * aspect) + 1.0f) * 0.5f * float(kPlanWidth),
+               (1.0f - sy / c.half_height) * 0.5f * float(kPlanHeight));
+  return pixel.x >= 0.0f && pixel.y >= 0.0f && pixel.x < float(kPlanWidth) && pixel.y < float(kPlanHeight);
 }
 
 // Per zone and pixel: the position of the pixel's line in the processing order.
@@ -55,7 +55,7 @@ std::vector<std::map<int, int>> line_order(const SweepPlan& plan) {
       for (int a = zone.lines[l].lo; a <= zone.lines[l].hi; ++a) {
         const int x = zone.axis == 0 ? zone.lines[l].coordinate : a;
         const int y = zone.axis == 0 ? a : zone.lines[l].coordinate;
-        EXPECT_TRUE(order[z].emplace(x + kWidth * y, int(l)).second) << "pixel twice in one zone";
+        EXPECT_TRUE(order[z].emplace(x + kPlanWidth * y, int(l)).second) << "pixel twice in one zone";
       }
     }
   }
@@ -65,9 +65,9 @@ std::vector<std::map<int, int>> line_order(const SweepPlan& plan) {
 // Walks many light rays through the region around the origin; counts the
 // pairs checked.
 int check_light_order(const CameraView& c, const Light& light, LightFlow expected_flow) {
-  const ImageLight image_light = project_light(c, kWidth, kHeight, light);
+  const ImageLight image_light = project_light(c, kPlanWidth, kPlanHeight, light);
   EXPECT_EQ(int(image_light.flow), int(expected_flow));
-  const SweepPlan plan = make_sweep_plan(image_light, PixelRect{0, 0, kWidth, kHeight}, 5.0f);
+  const SweepPlan plan = make_sweep_plan(image_light, PixelRect{0, 0, kPlanWidth, kPlanHeight}, 5.0f);
   const auto order = line_order(plan);
   Pcg32 rng(7);
   int checked = 0;
@@ -79,8 +79,8 @@ int check_light_order(const CameraView& c, const Light& light, LightFlow expecte
     if (!to_pixel(c, a, pa) || !to_pixel(c, b, pb)) continue;
     const ivec2 ia(pa), ib(pb);
     for (std::size_t z = 0; z < plan.zones.size(); ++z) {
-      const auto fa = order[z].find(ia.x + kWidth * ia.y);
-      const auto fb = order[z].find(ib.x + kWidth * ib.y);
+      const auto fa = order[z].find(ia.x + kPlanWidth * ia.y);
+      const auto fb = order[z].find(ib.x + kPlanWidth * ib.y);
       if (fa == order[z].end() || fb == order[z].end()) continue;
       if (!(plan.zones[z].weight(vec2(ia) + 0.5f) > 0.0f && plan.zones[z].weight(vec2(ib) + 0.5f) > 0.0f)) continue;
       // Pixel rounding can put b's pixel one line before a's.
@@ -96,7 +96,7 @@ int check_light_order(const CameraView& c, const Light& light, LightFlow expecte
 TEST(SweepPlan, PointLightInFrontOfTheCameraSweepsOutwardFromItsProjection) {
   const CameraView c = camera(false);
   const Light light = testing::point_light(vec3(-10.0f, 5.0f, 30.0f));
-  const ImageLight il = project_light(c, kWidth, kHeight, light);
+  const ImageLight il = project_light(c, kPlanWidth, kPlanHeight, light);
   vec2 expected;
   ASSERT_TRUE(to_pixel(c, light.position, expected));
   EXPECT_NEAR(il.position.x, expected.x, 1e-3f);
@@ -118,7 +118,7 @@ TEST(SweepPlan, DirectionalLightUnderPerspectiveSpreadsFromItsVanishingPoint) {
   // Across the view: one parallel sweep.
   const Light across = testing::directional_light(c.right);
   EXPECT_GT(check_light_order(c, across, LightFlow::Parallel), 1000);
-  const SweepPlan plan = make_sweep_plan(project_light(c, kWidth, kHeight, across), PixelRect{0, 0, kWidth, kHeight}, 5);
+  const SweepPlan plan = make_sweep_plan(project_light(c, kPlanWidth, kPlanHeight, across), PixelRect{0, 0, kPlanWidth, kPlanHeight}, 5);
   ASSERT_EQ(plan.zones.size(), 1u);
   EXPECT_EQ(plan.zones[0].axis, 0);  // columns, swept left to right
   EXPECT_EQ(plan.zones[0].lines.front().coordinate, 0);
@@ -129,18 +129,18 @@ TEST(SweepPlan, OrthographicCameraSweepsParallelForDirectionalAndOutwardForPoint
   EXPECT_GT(check_light_order(c, testing::directional_light(vec3(0.4f, 0.6f, -1.0f)), LightFlow::Parallel), 1000);
   EXPECT_GT(check_light_order(c, testing::point_light(vec3(10.0f, -20.0f, 35.0f)), LightFlow::Outward), 1000);
   // Along the view direction the image direction is undefined: the hint decides.
-  const ImageLight along = project_light(c, kWidth, kHeight, testing::directional_light(c.forward));
+  const ImageLight along = project_light(c, kPlanWidth, kPlanHeight, testing::directional_light(c.forward));
   EXPECT_EQ(int(along.flow), int(LightFlow::Parallel));
   EXPECT_EQ(along.direction, vec2(0.0f));
-  EXPECT_EQ(make_sweep_plan(along, PixelRect{0, 0, kWidth, kHeight}, 5.0f, 0).zones.at(0).axis, 0);
-  EXPECT_EQ(make_sweep_plan(along, PixelRect{0, 0, kWidth, kHeight}, 5.0f, 1).zones.at(0).axis, 1);
+  EXPECT_EQ(make_sweep_plan(along, PixelRect{0, 0, kPlanWidth, kPlanHeight}, 5.0f, 0).zones.at(0).axis, 0);
+  EXPECT_EQ(make_sweep_plan(along, PixelRect{0, 0, kPlanWidth, kPlanHeight}, 5.0f, 1).zones.at(0).axis, 1);
 }
 
 TEST(SweepPlan, ZoneWeightsCoverEveryPixelOnceAndBlendOnlyNearTheDiagonals) {
   ImageLight il;
   il.flow = LightFlow::Outward;
   il.position = vec2(20.3f, 30.6f);
-  const PixelRect rect{2, 3, kWidth - 1, kHeight - 2};
+  const PixelRect rect{2, 3, kPlanWidth - 1, kPlanHeight - 2};
   const SweepPlan plan = make_sweep_plan(il, rect, 5.0f);
   EXPECT_EQ(plan.zones.size(), 4u);
   const auto order = line_order(plan);
@@ -153,7 +153,7 @@ TEST(SweepPlan, ZoneWeightsCoverEveryPixelOnceAndBlendOnlyNearTheDiagonals) {
       for (std::size_t z = 0; z < plan.zones.size(); ++z) {
         const float w = plan.zones[z].weight(p);
         if (w <= 0.0f) continue;
-        EXPECT_TRUE(order[z].count(x + kWidth * y)) << "pixel with weight missing from its zone's lines";
+        EXPECT_TRUE(order[z].count(x + kPlanWidth * y)) << "pixel with weight missing from its zone's lines";
         sum += w;
         ++zones;
       }
@@ -178,9 +178,9 @@ TEST(SweepPlan, ZoneWeightsCoverEveryPixelOnceAndBlendOnlyNearTheDiagonals) {
 TEST(SweepPlan, ProjectedBoxRectBoundsTheBoxAndFallsBackToTheImage) {
   const CameraView c = camera(false);
   const Box3 box{vec3(-5.0f), vec3(5.0f)};
-  const PixelRect r = projected_box_rect(c, kWidth, kHeight, box);
+  const PixelRect r = projected_box_rect(c, kPlanWidth, kPlanHeight, box);
   EXPECT_FALSE(r.empty());
-  EXPECT_LT(r.x1 - r.x0, kWidth);
+  EXPECT_LT(r.x1 - r.x0, kPlanWidth);
   for (int i = 0; i < 8; ++i) {
     vec2 p;
     const vec3 corner(i & 1 ? 5.0f : -5.0f, i & 2 ? 5.0f : -5.0f, i & 4 ? 5.0f : -5.0f);
@@ -191,9 +191,9 @@ TEST(SweepPlan, ProjectedBoxRectBoundsTheBoxAndFallsBackToTheImage) {
     EXPECT_LE(p.y, float(r.y1));
   }
   const Box3 around_eye{c.eye - vec3(1.0f), c.eye + vec3(1.0f)};
-  const PixelRect all = projected_box_rect(c, kWidth, kHeight, around_eye);
-  EXPECT_EQ(all.x1 - all.x0, kWidth);
-  EXPECT_EQ(all.y1 - all.y0, kHeight);
+  const PixelRect all = projected_box_rect(c, kPlanWidth, kPlanHeight, around_eye);
+  EXPECT_EQ(all.x1 - all.x0, kPlanWidth);
+  EXPECT_EQ(all.y1 - all.y0, kPlanHeight);
 }
 
 }  // namespace
