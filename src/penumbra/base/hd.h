@@ -36,14 +36,17 @@
 #define PENUMBRA_COLD_PATH __attribute__((noinline))
 #endif
 
-// Keeps a whole secondary march (a shadow ray's transmittance) out of line on
-// the CPU, with everything it calls inlined into it. Its call costs nothing
-// next to its samples, and the packet units' tile bodies are `flatten`:
-// inlined, every call site of such a march (area light, point light, cache
-// miss) became a copy of it with every voxel type's sampler, which made one
-// unit take 80-100 s to compile (docs/RELIABILITY.md, CI time).
-#if defined(__CUDA_ARCH__) || !(defined(__GNUC__) || defined(__clang__))
-#define PENUMBRA_OUTLINED_MARCH
-#else
+// Keeps a whole secondary march (a shadow ray's transmittance) out of line in
+// the SIMD units, with everything it calls inlined into it. Its call costs
+// nothing next to its samples, and the packet units' tile bodies are
+// `flatten`: inlined, every call site of such a march (area light, point
+// light, cache miss) became a copy of it with every voxel type's sampler,
+// which made one unit take 72 s to compile (docs/PERFORMANCE.md). Elsewhere
+// (scalar units, the sanitizer build, CUDA) the compiler decides as usual:
+// flattened at -O1 under ASan the march cost the sanitizer build more than
+// it saved.
+#if defined(PENUMBRA_SIMD_TARGET) && !defined(__CUDA_ARCH__) && (defined(__GNUC__) || defined(__clang__))
 #define PENUMBRA_OUTLINED_MARCH __attribute__((noinline, flatten))
+#else
+#define PENUMBRA_OUTLINED_MARCH
 #endif
