@@ -42,9 +42,8 @@
 // `flatten`: inlined, every call site of such a march (area light, point
 // light, cache miss) became a copy of it with every voxel type's sampler,
 // which made one unit take 72 s to compile (docs/PERFORMANCE.md). Elsewhere
-// (scalar units, the sanitizer build, CUDA) the compiler decides as usual:
-// flattened at -O1 under ASan the march cost the sanitizer build more than
-// it saved.
+// (scalar units, the sanitizer build, CUDA) the compiler decides as before;
+// nothing measured there called for a change.
 #if defined(PENUMBRA_SIMD_TARGET) && !defined(__CUDA_ARCH__) && (defined(__GNUC__) || defined(__clang__))
 #define PENUMBRA_OUTLINED_MARCH __attribute__((noinline, flatten))
 #else
