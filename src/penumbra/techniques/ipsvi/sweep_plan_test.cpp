@@ -118,7 +118,8 @@ TEST(SweepPlan, DirectionalLightUnderPerspectiveSpreadsFromItsVanishingPoint) {
   // Across the view: one parallel sweep.
   const Light across = testing::directional_light(c.right);
   EXPECT_GT(check_light_order(c, across, LightFlow::Parallel), 1000);
-  const SweepPlan plan = make_sweep_plan(project_light(c, kPlanWidth, kPlanHeight, across), PixelRect{0, 0, kPlanWidth, kPlanHeight}, 5);
+  const SweepPlan plan =
+      make_sweep_plan(project_light(c, kPlanWidth, kPlanHeight, across), PixelRect{0, 0, kPlanWidth, kPlanHeight}, 5);
   ASSERT_EQ(plan.zones.size(), 1u);
   EXPECT_EQ(plan.zones[0].axis, 0);  // columns, swept left to right
   EXPECT_EQ(plan.zones[0].lines.front().coordinate, 0);
