@@ -129,11 +129,12 @@ ParameterSettings quick_params(const TechniqueInfo& info) {
 
 // The techniques whose render is the shared loop with a packet-capable
 // Lighting (every render_lit technique, emission-absorption and phong), and
-// occlusion-map, whose soft-shadow marches run as packets.
+// occlusion-map, whose soft-shadow marches run as packets, and ipsvi, whose
+// light segments do.
 const std::set<std::string> kPacketTechniques = {"emission-absorption", "phong",      "shadow-rays",
                                                  "filtered-sat",        "sat-ao",     "cone-shadows",
                                                  "ambient-scattering",  "shadow-map", "deep-shadow-map",
-                                                 "cssm",                "occlusion-map"};
+                                                 "cssm",                "occlusion-map", "ipsvi"};
 
 // Prepares once (light-space structures do not depend on the packet mode;
 // building them once per scene rather than per mode keeps this test quick)
@@ -157,9 +158,10 @@ double max_difference(const Image& a, const Image& b) {
 }
 
 // Modes of a technique that take another packet path than its defaults:
-// occlusion-map's DVR mode lights every DVR sample as packets.
+// occlusion-map's DVR mode lights every DVR sample as packets; ipsvi's
+// light segments carry the diffuse part's optical depth when albedo > 0.
 const std::vector<std::pair<std::string, ParameterSettings>> kPacketVariants = {
-    {"occlusion-map", {{"mode", std::string("dvr")}}}};
+    {"occlusion-map", {{"mode", std::string("dvr")}}}, {"ipsvi", {{"albedo", 0.5}}}};
 
 TEST(PacketPath, EveryTechniqueMatchesTheScalarPath) {
   const std::vector<SimdMode> modes = packet_modes();

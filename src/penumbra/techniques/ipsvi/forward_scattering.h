@@ -27,6 +27,7 @@
 //    limit, a diffusion: each step of length D along the light adds variance
 //    D h tan^2(theta) per axis, with h the smallest voxel spacing (as if the
 //    light were deflected by up to theta once per voxel).
+#include "penumbra/base/lanes.h"
 #include "penumbra/base/math.h"
 #include "penumbra/scene/light.h"
 
@@ -51,8 +52,13 @@ struct ForwardScattering {
   PENUMBRA_HD bool has_diffuse() const { return blend > 0.0f; }
 
   // Extinction of the diffuse part for a sample of TF colour `color`.
+  template <class L>
+  PENUMBRA_HD typename L::Vec3 diffuse_extinction(const typename L::Vec3& color, typename L::Float sigma_t) const {
+    using V = typename L::Vec3;
+    return sigma_t * (V(1.0f) - min(color * scattering_albedo, V(1.0f)) * cone_fraction);
+  }
   PENUMBRA_HD vec3 diffuse_extinction(vec3 color, float sigma_t) const {
-    return sigma_t * (vec3(1.0f) - glm::min(scattering_albedo * color, vec3(1.0f)) * cone_fraction);
+    return diffuse_extinction<ScalarLanes>(color, sigma_t);
   }
 
   PENUMBRA_HD vec3 visibility(float direct, vec3 diffuse) const {

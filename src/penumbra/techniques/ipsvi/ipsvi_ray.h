@@ -31,6 +31,7 @@
 #include "penumbra/techniques/ipsvi/light_cache_projection.h"
 #include "penumbra/techniques/ipsvi/light_model.h"
 #include "penumbra/techniques/ipsvi/light_segment.h"
+#include "penumbra/techniques/ipsvi/segment_tape.h"
 
 #include <cstdint>
 
@@ -80,6 +81,11 @@ struct RayCacheState {
   float run_depth = 0.0f;
   vec3 run_diffuse{0.0f};
   vec3 run_color{0.0f};
+  // Light segments recorded or replayed (segment_tape.h); null: each
+  // sample marches its own.
+  SegmentTape* tape = nullptr;
+
+  PENUMBRA_HD bool recording() const { return tape && tape->recording(); }
 };
 
 // Ray parameter of the light's closest approach to the ray; for a light at
@@ -94,7 +100,7 @@ PENUMBRA_HD inline float light_parameter(const Light& light, const Ray& ray) {
 // not taken from the samples: the resolve step (sweep_renderer.cpp) carries
 // each written texel's own light ray forward to the mean depth.
 PENUMBRA_HD inline void flush_run(const IpsviKernel& k, RayCacheState& st) {
-  if (st.run_texel >= 0 && st.run_weight > 0.0f) {
+  if (st.run_texel >= 0 && st.run_weight > 0.0f && !st.recording()) {
     const float inv = 1.0f / st.run_weight;
     k.cache.write(st.run_texel, st.run_weight, st.run_direct * inv, st.run_depth * inv, st.run_diffuse * inv,
                   st.run_color * inv);
@@ -177,7 +183,17 @@ PENUMBRA_HD CachedLight ipsvi_light_at(const IpsviKernel& k, const Sampler& samp
   lengths[diffuse_slot] = here - mean_depth;
   const int checkpoints = fs.has_diffuse() ? n + 1 : n;
   OpticalDepth tau[5];
-  if (k.piecewise) {
+  if (k.piecewise && st.recording()) {
+    // Only where the light is needed from here on is recorded; the light
+    // itself is not (segment_tape.h).
+    st.tape->record(p, ls.to_light, lengths, checkpoints);
+    st.texel = texel;
+    st.depth = here;
+    return CachedLight{1.0f, here, vec3(1.0f), vec3(1.0f)};
+  }
+  if (k.piecewise && st.tape && st.tape->replay(tau, checkpoints)) {
+    // marched as packets
+  } else if (k.piecewise) {
     if (k.paper) {
       light_segment_depths<true>(*k.shadow, sampler, p, ls.to_light, lengths, checkpoints, fs, tau,
                                  counts.light_samples);
@@ -254,7 +270,11 @@ template <class Sampler>
 PENUMBRA_HD CachedLight plane_light(const IpsviKernel& k, const Sampler& sampler, vec3 q, RayCacheState& st,
                                     IpsviRayCounts& counts) {
   float spread = 0.0f;
+  // Plane hits march their segments themselves (they are not recorded).
+  SegmentTape* const tape = st.tape;
+  st.tape = nullptr;
   CachedLight light = ipsvi_light_at(k, sampler, q, k.projection.project(q), 0.0f, vec3(0.0f), st, counts, &spread);
+  st.tape = tape;
   if (!k.piecewise || !(spread > kPlaneEdgeSpread)) return light;
   const LightSample ls = sample_light(k.view->lights[0], q);
   std::uint64_t& samples = counts.light_samples;
@@ -332,7 +352,7 @@ PENUMBRA_HD void ipsvi_march(const IpsviKernel& k, const Sampler& sampler, const
     const float t_ray = forward ? t : tb - t;
     const bool go_on = shade(t_ray, SamplePoint{p, index, value, vec3(c), c.a, ray.direction}, grid.length(kk),
                              visibility);
-    if (k.cache.covers(vec2(proj))) add_to_run(k, vec2(proj), proj.z, light, st);
+    if (!st.recording() && k.cache.covers(vec2(proj))) add_to_run(k, vec2(proj), proj.z, light, st);
     if (!go_on) break;
   }
   flush_run(k, st);
@@ -340,18 +360,23 @@ PENUMBRA_HD void ipsvi_march(const IpsviKernel& k, const Sampler& sampler, const
 
 // The colour and opacity of one viewing ray, as march_ray returns them.
 // `exit_t`: with the ERT extension, the depth after which the cache needs no
-// more samples once the colour has terminated (+inf without it).
+// more samples once the colour has terminated (+inf without it). `tape`:
+// record the light segments (nothing else is then written and the colour is
+// meaningless) or replay them (segment_tape.h).
 template <class Sampler>
 PENUMBRA_HD vec4 trace_ipsvi_ray(const IpsviKernel& k, const Sampler& sampler, const Ray& ray, float offset,
-                                 float exit_t, IpsviRayCounts& counts) {
+                                 float exit_t, IpsviRayCounts& counts, SegmentTape* tape = nullptr) {
   const RenderView& v = *k.view;
   float t_plane = kInfinity;
   const int plane = nearest_plane(v, ray, kInfinity, t_plane);
+  if (tape && (!k.piecewise || k.paper)) tape = nullptr;  // recorded: the grey model's segments only
   const Interval iv = volume_interval(v, ray, 0.0f, t_plane);
   const float min_transmittance = 1.0f - v.ert_threshold;
   const float split = iv.empty() ? iv.t0 : glm::clamp(light_parameter(v.lights[0], ray), iv.t0, iv.t1);
   RayCacheState st;
   st.ray_direction = ray.direction;
+  st.tape = tape;
+  const bool recording = st.recording();  // only the light segments matter
 
   // The part beyond the light's closest approach, front to back, then what
   // lies behind it (a plane or the background).
@@ -363,9 +388,11 @@ PENUMBRA_HD vec4 trace_ipsvi_ray(const IpsviKernel& k, const Sampler& sampler, c
                 if (terminated) return t < exit_t;
                 if (s.sigma_t > 0.0f) {
                   const float alpha = 1.0f - exp_nonpositive(-s.sigma_t * length);
-                  const vec3 lit =
-                      ScatteringLighting<FixedVisibility>{&v, {visibility()}, v.material.shading}.sample(s);
-                  color += (transmittance * alpha) * lit;
+                  const vec3 visible = visibility();
+                  if (!recording) {
+                    color += (transmittance * alpha) *
+                             ScatteringLighting<FixedVisibility>{&v, {visible}, v.material.shading}.sample(s);
+                  }
                   transmittance *= 1.0f - alpha;
                   terminated = transmittance <= min_transmittance;
                 }
@@ -373,7 +400,9 @@ PENUMBRA_HD vec4 trace_ipsvi_ray(const IpsviKernel& k, const Sampler& sampler, c
               });
   float alpha_out = 1.0f - transmittance;
   if (!terminated) {
-    if (plane >= 0) {
+    if (plane >= 0 && recording) {
+      alpha_out = 1.0f;  // its light is not recorded (plane_light)
+    } else if (plane >= 0) {
       const vec3 q = ray.at(t_plane);
       const CachedLight light = plane_light(k, sampler, q, st, counts);
       const vec3 visibility = ipsvi_visibility(k, light, vec3(k.scattering.blend), q, ray.direction, false);
@@ -393,9 +422,11 @@ PENUMBRA_HD vec4 trace_ipsvi_ray(const IpsviKernel& k, const Sampler& sampler, c
               [&](float, const SamplePoint& s, float length, auto&& visibility) {
                 if (s.sigma_t > 0.0f) {
                   const float alpha = 1.0f - exp_nonpositive(-s.sigma_t * length);
-                  const vec3 lit =
-                      ScatteringLighting<FixedVisibility>{&v, {visibility()}, v.material.shading}.sample(s);
-                  color = alpha * lit + (1.0f - alpha) * color;
+                  const vec3 visible = visibility();
+                  if (!recording) {
+                    color = alpha * ScatteringLighting<FixedVisibility>{&v, {visible}, v.material.shading}.sample(s) +
+                            (1.0f - alpha) * color;
+                  }
                   front_transmittance *= 1.0f - alpha;
                 }
                 return true;

@@ -32,78 +32,134 @@ struct OpticalDepth {
   vec3 emitted{0.0f};   // with emission: the colour the stretch adds to the light (Eq. 3)
 };
 
-// Segments up to this many steps are marched sample by sample; longer ones
-// (a texel nobody has written yet, whose depth is the box entry) skip empty
-// macrocells with the shared cursor.
+// Segments up to this many steps are marched sample by sample when one ray
+// is marched alone; longer ones (a texel nobody has written yet, whose depth
+// is the box entry), and every packet, skip empty macrocells with the
+// shared cursor.
 inline constexpr int kDirectSegmentSteps = 8;
 
-// depth[i] = optical depth over [0, lengths[i]] from `from` along `to_light`
-// (count <= 8). A checkpoint inside a segment of the march gets the part of
-// that segment before it.
+// The most checkpoints one march reports: four cache texels and the diffuse
+// part's mean depth (ipsvi_ray.h).
+inline constexpr int kMaxSegmentCheckpoints = 5;
+
+// OpticalDepth on lanes.
+template <class L> struct OpticalDepthL {
+  typename L::Float direct;
+  typename L::Vec3 diffuse, emitted;
+};
+
+// The light segments of L::kWidth points, lane i from rays[i].origin along
+// rays[i].direction (toward the light), for the lanes on in `lanes`:
+// depth[j] = optical depth over [0, lengths[j * L::kWidth + i]] (j < count;
+// lanes may leave checkpoints unused at length 0). A checkpoint inside a
+// segment of the march gets the part of that segment before it. `samples`
+// counts the samples taken. One ray is the one-lane instance (below).
 // (Emission is a template parameter so that the grey model's march stays
-// the code it was, to the bit.)
+// free of the colour terms.)
+template <bool Emission, class L, class Sampler>
+PENUMBRA_HD void light_segment_depths_lanes(const RenderView& v, const Sampler& sampler, const Ray* rays,
+                                            const float* lengths, int count, typename L::Mask lanes,
+                                            const ForwardScattering& scattering, OpticalDepthL<L>* depth,
+                                            std::uint64_t& samples) {
+  using F = typename L::Float;
+  using V = typename L::Vec3;
+  using M = typename L::Mask;
+  constexpr int W = L::kWidth;
+  SampleGrid grids[W];
+  vec3 origins[W], directions[W];
+  float starts[W];
+  const std::uint32_t on = L::bits(lanes);
+  for (int i = 0; i < W; ++i) {
+    float longest = 0.0f;
+    for (int j = 0; j < count; ++j) longest = glm::max(longest, lengths[j * W + i]);
+    grids[i] = ((on >> i) & 1u) ? SampleGrid(volume_interval(v, rays[i], 0.0f, longest), v.step, 0.5f) : SampleGrid();
+    origins[i] = v.volume.index_from_world(rays[i].origin);
+    directions[i] = rays[i].direction / v.volume.spacing;
+    starts[i] = grids[i].t0;
+  }
+  const V o = pack_lanes<L>(origins);
+  const V d = pack_lanes<L>(directions);
+  const F t0 = L::load(starts);
+  const TransferFunctionView tf = v.tf;
+  const bool diffuse = scattering.has_diffuse();
+  F checkpoint[kMaxSegmentCheckpoints];
+  M passed[kMaxSegmentCheckpoints];
+  for (int j = 0; j < count; ++j) {
+    checkpoint[j] = L::load(lengths + j * W);
+    passed[j] = M(false);
+    depth[j] = OpticalDepthL<L>{F(0.0f), V(0.0f), V(0.0f)};
+  }
+  F total_direct(0.0f);
+  V total_diffuse(0.0f), total_emitted(0.0f);
+  std::uint64_t taken = 0;
+  // Adds the segment [start, start + length) with its sample at t for the
+  // lanes in `has`; returns the lanes whose light is gone, after which the
+  // rest of their march changes nothing.
+  auto add = [&](F t, F length, F start, M has) PENUMBRA_FORCE_INLINE_LAMBDA {
+    taken += std::uint64_t(count_true(has));
+    const F value = sampler.template sample<L>(o + t * d);
+    typename TransferFunctionView::Place<L> at;
+    const F sigma = sample_extinction<L>(tf, sampler, value, at);
+    V color(0.0f);
+    if (Emission || diffuse) {
+      color = tf.color<L>(at);
+      if (!Sampler::kAlwaysFinite && !sampler.all_finite()) color = select(finite(value), color, V(0.0f));
+    }
+    const F end = start + length;
+    const V ext = diffuse ? scattering.diffuse_extinction<L>(color, sigma) : V(0.0f);
+    // Emission: what reaches the segment's origin of the colour of [start, start + part].
+    auto emitted = [&](F part) {
+      return (exp_nonpositive(-total_direct) * (F(1.0f) - exp_nonpositive(-sigma * part))) *
+             clamp(color, V(0.0f), V(1.0f));
+    };
+    for (int j = 0; j < count; ++j) {
+      const M now = has & !passed[j] & (checkpoint[j] < end);
+      if (none(now)) continue;
+      const F part = max(checkpoint[j] - start, F(0.0f));
+      depth[j].direct = select(now, total_direct + sigma * part, depth[j].direct);
+      if (diffuse) depth[j].diffuse = select(now, total_diffuse + ext * part, depth[j].diffuse);
+      if constexpr (Emission) depth[j].emitted = select(now, total_emitted + emitted(part), depth[j].emitted);
+      passed[j] = passed[j] | now;
+    }
+    if constexpr (Emission) total_emitted = select(has, total_emitted + emitted(length), total_emitted);
+    total_direct = select(has, total_direct + sigma * length, total_direct);
+    if (diffuse) total_diffuse = select(has, total_diffuse + ext * length, total_diffuse);
+    return diffuse ? M(false) : (has & !(total_direct < kMaxOpticalDepth));
+  };
+  if (W == 1 && grids[0].count <= kDirectSegmentSteps) {
+    const SampleGrid& grid = grids[0];
+    for (int k = 0; k < grid.count; ++k) {
+      if (any(add(F(grid.position(k)), F(grid.length(k)), F(grid.start(k)), M(true)))) break;
+    }
+  } else {
+    LaneCursor<L> cursor(v, rays, grids, lanes);
+    F t, length;
+    M has;
+    while (cursor.next(t, length, has)) {
+      const F start = t0 + to_float(cursor.sample_index()) * v.step;
+      const M gone = add(t, length, start, has);
+      if (any(gone)) cursor.stop(gone);
+    }
+  }
+  for (int j = 0; j < count; ++j) {
+    depth[j].direct = select(passed[j], depth[j].direct, total_direct);
+    depth[j].diffuse = select(passed[j], depth[j].diffuse, total_diffuse);
+    depth[j].emitted = select(passed[j], depth[j].emitted, total_emitted);
+  }
+  samples += taken;
+}
+
+// depth[i] = optical depth over [0, lengths[i]] from `from` along `to_light`
+// (count <= kMaxSegmentCheckpoints): the one-lane instance.
 template <bool Emission = false, class Sampler>
 PENUMBRA_HD void light_segment_depths(const RenderView& v, const Sampler& sampler, vec3 from, vec3 to_light,
                                       const float* lengths, int count, const ForwardScattering& scattering,
                                       OpticalDepth* depth, std::uint64_t& samples) {
-  // Checkpoints in increasing length, so the march passes them in order.
-  int order[8];
-  float longest = 0.0f;
-  for (int i = 0; i < count; ++i) {
-    int j = i;
-    while (j > 0 && lengths[order[j - 1]] > lengths[i]) {
-      order[j] = order[j - 1];
-      --j;
-    }
-    order[j] = i;
-    longest = glm::max(longest, lengths[i]);
-  }
   const Ray ray{from, to_light};
-  const SampleGrid grid(volume_interval(v, ray, 0.0f, longest), v.step, 0.5f);
-  const vec3 o = v.volume.index_from_world(from);
-  const vec3 d = to_light / v.volume.spacing;
-  const TransferFunctionView tf = v.tf;
-  const bool diffuse = scattering.has_diffuse();
-  OpticalDepth total;
-  int next = 0;  // the first checkpoint not yet passed
-  std::uint64_t taken = 0;
-  // Adds segment k (sample at t); false once the light is gone, after which
-  // the rest of the segment changes nothing.
-  auto add = [&](int k, float t) PENUMBRA_FORCE_INLINE_LAMBDA {
-    ++taken;
-    const float value = sampler(o + t * d);
-    const vec4 c = Sampler::kAlwaysFinite ? tf.lookup_finite(value) : tf.lookup(value);
-    const float start = grid.start(k), end = start + grid.length(k);
-    const vec3 ext = diffuse ? scattering.diffuse_extinction(vec3(c), c.a) : vec3(0.0f);
-    // Emission: what reaches `from` of the colour of [start, start + part].
-    auto emitted = [&](float part) {
-      return (exp_nonpositive(-total.direct) * (1.0f - exp_nonpositive(-c.a * part))) *
-             glm::clamp(vec3(c), vec3(0.0f), vec3(1.0f));
-    };
-    while (next < count && lengths[order[next]] < end) {
-      const float part = glm::max(lengths[order[next]] - start, 0.0f);
-      depth[order[next]].direct = total.direct + c.a * part;
-      depth[order[next]].diffuse = total.diffuse + ext * part;
-      if constexpr (Emission) depth[order[next]].emitted = total.emitted + emitted(part);
-      ++next;
-    }
-    if constexpr (Emission) total.emitted += emitted(end - start);
-    total.direct += c.a * (end - start);
-    total.diffuse += ext * (end - start);
-    return diffuse || total.direct < kMaxOpticalDepth;
-  };
-  if (grid.count <= kDirectSegmentSteps) {
-    for (int k = 0; k < grid.count && add(k, grid.position(k)); ++k) {
-    }
-  } else {
-    SampleCursor cursor(v, ray, grid);
-    int k;
-    float t;
-    while (cursor.next(k, t) && add(k, t)) {
-    }
-  }
-  for (; next < count; ++next) depth[order[next]] = total;
-  samples += taken;
+  OpticalDepthL<ScalarLanes> lane_depth[kMaxSegmentCheckpoints];
+  light_segment_depths_lanes<Emission, ScalarLanes>(v, sampler, &ray, lengths, count, true, scattering, lane_depth,
+                                                    samples);
+  for (int j = 0; j < count; ++j) depth[j] = OpticalDepth{lane_depth[j].direct, lane_depth[j].diffuse, lane_depth[j].emitted};
 }
 
 template <bool Emission = false, class Sampler>

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <memory>
 
 namespace penumbra {
 namespace {
@@ -28,6 +29,25 @@ struct BlockPixel {
   int x, y;
   float weight;
 };
+
+// The tape march for `target`, or nullptr where this build has none.
+SegmentTapeMarch segment_tape_march(SimdTarget target) {
+  switch (target) {
+#if defined(PENUMBRA_SIMD_AVX3)
+    case SimdTarget::Avx3: return &march_segment_tape<SimdTarget::Avx3>;
+#endif
+#if defined(PENUMBRA_SIMD_AVX2)
+    case SimdTarget::Avx2: return &march_segment_tape<SimdTarget::Avx2>;
+#endif
+    default: return nullptr;
+  }
+}
+
+// Each thread's tape of light segments (segment_tape.h), 64 KiB, kept.
+SegmentTape& thread_tape() {
+  thread_local std::unique_ptr<SegmentTape> tape = std::make_unique<SegmentTape>();
+  return *tape;
+}
 
 }  // namespace
 
@@ -137,6 +157,7 @@ void IpsviRenderer::render(const Scene& scene, Image& image, RenderStats* stats)
   const PixelRect rect = view.plane_count > 0 ? image_rect : volume_rect;
   std::atomic<std::uint64_t> view_samples{0}, light_samples{0}, write_samples{0}, exact_plane_rays{0};
   std::vector<BlockPixel> block;
+  SimdTarget simd = SimdTarget::Scalar;  // what the light segments ran as
 
   for (std::size_t li = 0; li < lights_.size(); ++li) {
     const LightCache& lc = lights_[li];
@@ -170,6 +191,11 @@ void IpsviRenderer::render(const Scene& scene, Image& image, RenderStats* stats)
     kernel.piecewise = settings_.piecewise_integration;
     kernel.paper = paper;
     kernel.cone_phase = cone_phase;
+    // The grey model's light segments as SIMD packets where this view can
+    // have them (the shadow view's volume is the view's).
+    const SimdTarget target = settings_.piecewise_integration && !paper ? packet_target(lit_shadow) : SimdTarget::Scalar;
+    const SegmentTapeMarch tape_march = segment_tape_march(target);
+    if (tape_march) simd = target;
 
     with_sampler(view.volume, [&](const auto& sampler) {
       // A written texel's new light: with piecewise integration its own light
@@ -238,12 +264,22 @@ void IpsviRenderer::render(const Scene& scene, Image& image, RenderStats* stats)
               0, std::int64_t(block.size()),
               [&](std::int64_t begin, std::int64_t end) {
                 IpsviRayCounts counts;
+                SegmentTape* tape = tape_march ? &thread_tape() : nullptr;
                 for (std::int64_t i = begin; i < end; ++i) {
                   const BlockPixel& bp = block[std::size_t(i)];
                   const Ray ray = lit.camera.pixel_ray(float(bp.x) + 0.5f, float(bp.y) + 0.5f, width, height);
                   const float exit = early ? early_.exit_depth(bp.x, bp.y) : kInfinity;
-                  const vec4 c = trace_ipsvi_ray(kernel, sampler, ray, pixel_sample_offset(lit, bp.x, bp.y), exit,
-                                                 counts);
+                  const float offset = pixel_sample_offset(lit, bp.x, bp.y);
+                  if (tape) {
+                    // The ray's light segments as packets (segment_tape.h).
+                    tape->begin_recording();
+                    IpsviRayCounts recording;
+                    trace_ipsvi_ray(kernel, sampler, ray, offset, exit, recording, tape);
+                    tape_march(lit_shadow, scattering, *tape);
+                    counts.light_samples += tape->samples;
+                    tape->begin_replay();
+                  }
+                  const vec4 c = trace_ipsvi_ray(kernel, sampler, ray, offset, exit, counts, tape);
                   const std::size_t index = std::size_t(bp.x) + std::size_t(width) * std::size_t(bp.y);
                   sums_[index] += bp.weight * vec4(vec3(c), first_pass ? c.a : 0.0f);
                   if (first_pass) coverage_[index] += bp.weight;
@@ -273,6 +309,7 @@ void IpsviRenderer::render(const Scene& scene, Image& image, RenderStats* stats)
   if (stats) {
     stats->samples += counts_.view_samples;
     stats->rays += std::uint64_t(width) * std::uint64_t(height) * lights_.size();
+    stats->simd = simd;
   }
 }
 
