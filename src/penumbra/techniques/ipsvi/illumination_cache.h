@@ -194,6 +194,11 @@ class IlluminationCache {
   // block's writes (at a greater depth). All texels are advanced before any
   // is changed, so advance may read any texel of the state.
   template <class Advance> void resolve(const Advance& advance);
+  // The same, a chunk of texels at a time: advance(n, texels, stored,
+  // written, out) gives out[i] for texels[i] (n <= kResolveChunk), for the
+  // texels whose writes lie beyond what they held.
+  static constexpr int kResolveChunk = 64;
+  template <class AdvanceChunk> void resolve_chunks(const AdvanceChunk& advance);
 
   int size() const { return size_; }
   std::uint64_t bytes() const;
@@ -216,6 +221,13 @@ class IlluminationCache {
 };
 
 template <class Advance> void IlluminationCache::resolve(const Advance& advance) {
+  resolve_chunks([&](int n, const int* texels, const CachedLight* stored, const CachedLight* written,
+                     CachedLight* out) {
+    for (int i = 0; i < n; ++i) out[i] = advance(texels[i], stored[i], written[i]);
+  });
+}
+
+template <class AdvanceChunk> void IlluminationCache::resolve_chunks(const AdvanceChunk& advance) {
   const std::int64_t count = touched_count_;
   const bool diffuse = !diffuse_.empty();
   const bool colored = !color_.empty();
@@ -223,22 +235,42 @@ template <class Advance> void IlluminationCache::resolve(const Advance& advance)
   parallel_for(
       0, count,
       [&](std::int64_t first, std::int64_t last) {
-        for (std::int64_t i = first; i < last; ++i) {
-          const std::uint32_t texel = touched_[std::size_t(i)];
-          std::uint64_t* s = sums_.data() + std::size_t(texel) * std::size_t(stride);
-          const double w = double(s[0]) * IlluminationCacheView::kValueScale;
-          CachedLight stored{state_[texel].x, state_[texel].y, diffuse ? vec3(diffuse_[texel]) : vec3(1.0f),
-                             colored ? vec3(color_[texel]) : vec3(1.0f)};
-          CachedLight written{float(double(s[1]) / w), float(double(s[2]) / w) * max_depth_, vec3(1.0f), vec3(1.0f)};
-          if (diffuse) written.diffuse = vec3(float(double(s[3]) / w), float(double(s[4]) / w), float(double(s[5]) / w));
-          if (colored) written.color = vec3(float(double(s[6]) / w), float(double(s[7]) / w), float(double(s[8]) / w));
-          const CachedLight c = written.depth > stored.depth ? advance(int(texel), stored, written) : stored;
-          staged_[std::size_t(i)] = Staged{c.direct, c.depth, c.diffuse};
-          if (colored) staged_color_[std::size_t(i)] = c.color;
-          std::fill(s, s + stride, 0u);
+        int texels[kResolveChunk], slots[kResolveChunk];
+        CachedLight stored[kResolveChunk], written[kResolveChunk], out[kResolveChunk];
+        for (std::int64_t begin = first; begin < last; begin += kResolveChunk) {
+          const std::int64_t end = std::min(last, begin + kResolveChunk);
+          int n = 0;
+          for (std::int64_t i = begin; i < end; ++i) {
+            const std::uint32_t texel = touched_[std::size_t(i)];
+            std::uint64_t* s = sums_.data() + std::size_t(texel) * std::size_t(stride);
+            const double w = double(s[0]) * IlluminationCacheView::kValueScale;
+            const CachedLight held{state_[texel].x, state_[texel].y, diffuse ? vec3(diffuse_[texel]) : vec3(1.0f),
+                                   colored ? vec3(color_[texel]) : vec3(1.0f)};
+            CachedLight mean{float(double(s[1]) / w), float(double(s[2]) / w) * max_depth_, vec3(1.0f), vec3(1.0f)};
+            if (diffuse) mean.diffuse = vec3(float(double(s[3]) / w), float(double(s[4]) / w), float(double(s[5]) / w));
+            if (colored) mean.color = vec3(float(double(s[6]) / w), float(double(s[7]) / w), float(double(s[8]) / w));
+            std::fill(s, s + stride, 0u);
+            if (mean.depth > held.depth) {
+              texels[n] = int(texel);
+              slots[n] = int(i - begin);
+              stored[n] = held;
+              written[n] = mean;
+              ++n;
+            }
+            out[i - begin] = held;  // kept unless advanced below
+          }
+          // The advanced texels' new light, back to their places in the chunk.
+          CachedLight advanced[kResolveChunk];
+          if (n > 0) advance(n, texels, stored, written, advanced);
+          for (int j = 0; j < n; ++j) out[slots[j]] = advanced[j];
+          for (std::int64_t i = begin; i < end; ++i) {
+            const CachedLight& c = out[i - begin];
+            staged_[std::size_t(i)] = Staged{c.direct, c.depth, c.diffuse};
+            if (colored) staged_color_[std::size_t(i)] = c.color;
+          }
         }
       },
-      64);
+      kResolveChunk);
   parallel_for(
       0, count,
       [&](std::int64_t first, std::int64_t last) {

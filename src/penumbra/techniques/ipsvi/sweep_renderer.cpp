@@ -211,36 +211,85 @@ void IpsviRenderer::render(const Scene& scene, Image& image, RenderStats* stats)
       // texels written just ahead of a sample on a grazing surface are not
       // left out of its read (the cache-grid pattern of issue 21). The diffuse
       // part's spread is tied to the written depth, so it keeps it.
-      auto advance = [&](int texel, const CachedLight& stored, const CachedLight& written) {
-        if (!kernel.piecewise) return written;
+      // Where a texel's light ray is marched from and how far (false: no
+      // march, its new light is `step.target`).
+      struct TexelStep {
+        CachedLight target;
+        vec3 from, to_light;
+        float delta;
+        vec2 center;
+      };
+      auto plan_step = [&](int texel, const CachedLight& stored, const CachedLight& written, TexelStep& step) {
+        step.target = written;
+        if (!kernel.piecewise) return false;
         const int n = kernel.cache.size;
-        const vec2 center(float(texel % n) + 0.5f, float(texel / n) + 0.5f);
-        const Ray light_ray = kernel.projection.texel_ray(center);
-        CachedLight target = written;
+        step.center = vec2(float(texel % n) + 0.5f, float(texel / n) + 0.5f);
+        const Ray light_ray = kernel.projection.texel_ray(step.center);
         if (!scattering.has_diffuse()) {
           const vec2 texel_size = kernel.projection.texel_world_size(written.depth);
-          target.depth = written.depth - kCacheTrailTexels * glm::max(texel_size.x, texel_size.y);
-          if (!(target.depth > stored.depth)) return stored;
+          step.target.depth = written.depth - kCacheTrailTexels * glm::max(texel_size.x, texel_size.y);
+          if (!(step.target.depth > stored.depth)) {
+            step.target = stored;
+            return false;
+          }
         }
-        const float delta = target.depth - stored.depth;
-        std::uint64_t samples = 0;
-        const vec3 from = light_ray.at(target.depth), to_light = -light_ray.direction;
-        const OpticalDepth tau =
-            kernel.paper ? light_segment_depth<true>(lit_shadow, sampler, from, to_light, delta, scattering, samples)
-                         : light_segment_depth(lit_shadow, sampler, from, to_light, delta, scattering, samples);
-        write_samples.fetch_add(samples, std::memory_order_relaxed);
+        step.delta = step.target.depth - stored.depth;
+        step.from = light_ray.at(step.target.depth);
+        step.to_light = -light_ray.direction;
+        return true;
+      };
+      auto finish_step = [&](const TexelStep& step, const CachedLight& stored, const OpticalDepth& tau) {
         CachedLight out;
-        out.depth = target.depth;
+        out.depth = step.target.depth;
         out.direct = stored.direct * exp_nonpositive(-tau.direct);
         if (kernel.paper) out.color = stored.color * exp_nonpositive(-tau.direct) + tau.emitted;
         if (scattering.has_diffuse()) {
           const vec2 spread =
-              std::sqrt(delta * scattering.spread_per_length) / kernel.projection.texel_world_size(target.depth);
-          out.diffuse = kernel.cache.read_diffuse(center, spread) *
+              std::sqrt(step.delta * scattering.spread_per_length) / kernel.projection.texel_world_size(step.target.depth);
+          out.diffuse = kernel.cache.read_diffuse(step.center, spread) *
                         vec3(exp_nonpositive(-tau.diffuse.r), exp_nonpositive(-tau.diffuse.g),
                              exp_nonpositive(-tau.diffuse.b));
         }
         return out;
+      };
+      // The written texels of a chunk, their light rays as packets where
+      // this view has them (segment_tape.h), else one at a time.
+      auto advance = [&](int n, const int* texels, const CachedLight* stored, const CachedLight* written,
+                         CachedLight* out) {
+        TexelStep steps[IlluminationCache::kResolveChunk];
+        bool marched[IlluminationCache::kResolveChunk];
+        SegmentTape* tape = tape_march ? &thread_tape() : nullptr;
+        if (tape) tape->begin_recording();
+        std::uint64_t samples = 0;
+        for (int i = 0; i < n; ++i) {
+          marched[i] = plan_step(texels[i], stored[i], written[i], steps[i]);
+          if (!marched[i]) {
+            out[i] = steps[i].target;
+          } else if (tape) {
+            tape->record(steps[i].from, steps[i].to_light, &steps[i].delta, 1);
+          } else {
+            const TexelStep& step = steps[i];
+            const OpticalDepth tau =
+                kernel.paper
+                    ? light_segment_depth<true>(lit_shadow, sampler, step.from, step.to_light, step.delta, scattering,
+                                                samples)
+                    : light_segment_depth(lit_shadow, sampler, step.from, step.to_light, step.delta, scattering,
+                                          samples);
+            out[i] = finish_step(step, stored[i], tau);
+          }
+        }
+        if (tape && tape->count > 0) {
+          tape_march(lit_shadow, scattering, *tape);
+          samples += tape->samples;
+          tape->begin_replay();
+          for (int i = 0; i < n; ++i) {
+            if (!marched[i]) continue;
+            OpticalDepth tau;
+            tape->replay(&tau, 1);
+            out[i] = finish_step(steps[i], stored[i], tau);
+          }
+        }
+        write_samples.fetch_add(samples, std::memory_order_relaxed);
       };
       for (const SweepZone& zone : plan.zones) {
         cache_.reset(lc.initial);
@@ -289,7 +338,7 @@ void IpsviRenderer::render(const Scene& scene, Image& image, RenderStats* stats)
                 exact_plane_rays.fetch_add(counts.exact_plane_rays, std::memory_order_relaxed);
               },
               8);
-          cache_.resolve(advance);
+          cache_.resolve_chunks(advance);
           ++counts_.blocks;
         }
       }
