@@ -159,9 +159,12 @@ double max_difference(const Image& a, const Image& b) {
 
 // Modes of a technique that take another packet path than its defaults:
 // occlusion-map's DVR mode lights every DVR sample as packets; ipsvi's
-// light segments carry the diffuse part's optical depth when albedo > 0.
+// light segments carry the diffuse part's optical depth when albedo > 0 and
+// the colour they add with the paper's light model.
 const std::vector<std::pair<std::string, ParameterSettings>> kPacketVariants = {
-    {"occlusion-map", {{"mode", std::string("dvr")}}}, {"ipsvi", {{"albedo", 0.5}}}};
+    {"occlusion-map", {{"mode", std::string("dvr")}}},
+    {"ipsvi", {{"albedo", 0.5}}},
+    {"ipsvi", {{"albedo", 0.5}, {"light_model", std::string("paper")}}}};
 
 TEST(PacketPath, EveryTechniqueMatchesTheScalarPath) {
   const std::vector<SimdMode> modes = packet_modes();

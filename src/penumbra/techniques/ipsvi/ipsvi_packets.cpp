@@ -1,5 +1,5 @@
 // SIMD unit (cmake/PenumbraSimd.cmake): ipsvi's recorded light segments
-// (segment_tape.h), 8 or 16 at a time. Everything here is inlined into the
+// (segment_tape.h), 8 or 16 at a time, for either light model. Everything here is inlined into the
 // flatten function or named after this unit's target (see
 // backends/cpu/packet_render.h on why).
 #include "penumbra/backends/cpu/simd_lanes.h"
@@ -8,6 +8,7 @@
 namespace penumbra {
 namespace HWY_NAMESPACE {
 
+template <bool Emission>
 __attribute__((flatten)) void march_tape(const RenderView& shadow, const ForwardScattering& scattering,
                                          SegmentTape& tape) {
   using L = SimdLanes;
@@ -30,12 +31,17 @@ __attribute__((flatten)) void march_tape(const RenderView& shadow, const Forward
     const int live = tape.count - first < W ? tape.count - first : W;
     const MaskV lanes = L::from_bits(live == 32 ? ~0u : (1u << live) - 1u);
     OpticalDepthL<L> depth[kMaxSegmentCheckpoints];
-    light_segment_depths_lanes<false, L>(shadow, sampler, rays, lengths, n, lanes, scattering, depth, samples);
+    light_segment_depths_lanes<Emission, L>(shadow, sampler, rays, lengths, n, lanes, scattering, depth, samples);
     for (int j = 0; j < n; ++j) {
       L::store(depth[j].direct, tape.direct[j] + first);
       L::store(depth[j].diffuse.x, tape.diffuse[j][0] + first);
       L::store(depth[j].diffuse.y, tape.diffuse[j][1] + first);
       L::store(depth[j].diffuse.z, tape.diffuse[j][2] + first);
+      if constexpr (Emission) {
+        L::store(depth[j].emitted.x, tape.emitted[j][0] + first);
+        L::store(depth[j].emitted.y, tape.emitted[j][1] + first);
+        L::store(depth[j].emitted.z, tape.emitted[j][2] + first);
+      }
     }
   }
   tape.samples += samples;
@@ -46,7 +52,11 @@ __attribute__((flatten)) void march_tape(const RenderView& shadow, const Forward
 template <SimdTarget Target>
 void march_segment_tape(const RenderView& shadow, const ForwardScattering& scattering, SegmentTape& tape) {
   static_assert(Target == HWY_NAMESPACE::kThisSimdTarget, "each SIMD unit instantiates its own target only");
-  HWY_NAMESPACE::march_tape(shadow, scattering, tape);
+  if (tape.emission) {
+    HWY_NAMESPACE::march_tape<true>(shadow, scattering, tape);
+  } else {
+    HWY_NAMESPACE::march_tape<false>(shadow, scattering, tape);
+  }
 }
 
 template void march_segment_tape<SimdTarget::PENUMBRA_SIMD_TARGET>(const RenderView&, const ForwardScattering&,

@@ -369,7 +369,7 @@ PENUMBRA_HD vec4 trace_ipsvi_ray(const IpsviKernel& k, const Sampler& sampler, c
   const RenderView& v = *k.view;
   float t_plane = kInfinity;
   const int plane = nearest_plane(v, ray, kInfinity, t_plane);
-  if (tape && (!k.piecewise || k.paper)) tape = nullptr;  // recorded: the grey model's segments only
+  if (tape && !k.piecewise) tape = nullptr;  // recorded: piecewise integration's segments only
   const Interval iv = volume_interval(v, ray, 0.0f, t_plane);
   const float min_transmittance = 1.0f - v.ert_threshold;
   const float split = iv.empty() ? iv.t0 : glm::clamp(light_parameter(v.lights[0], ray), iv.t0, iv.t1);

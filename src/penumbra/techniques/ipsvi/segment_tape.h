@@ -14,7 +14,8 @@
 //  3. replaying: the ray is traced again, each sample taking its segment's
 //     optical depths from here, in the order they were recorded.
 // A segment beyond the capacity is marched on its own during the replay.
-// Grey light model only (the paper's model marches one ray at a time).
+// With the paper's light model (`emission`) the segments also carry the
+// colour they add to the light (light_segment.h).
 #include "penumbra/backends/cpu/packets.h"
 #include "penumbra/techniques/ipsvi/light_segment.h"
 
@@ -28,6 +29,7 @@ struct SegmentTape {
   static constexpr int kMaxWidth = 16;
 
   Mode mode = Mode::Record;
+  bool emission = false;  // the paper's light model: emitted colour too
   int count = 0;        // segments recorded
   int next = 0;         // the next one to replay
   int checkpoints = 0;  // the most checkpoints of any recorded segment
@@ -37,9 +39,11 @@ struct SegmentTape {
   float lengths[kMaxSegmentCheckpoints][kCapacity];  // 0 past a segment's own checkpoints
   float direct[kMaxSegmentCheckpoints][kCapacity];
   float diffuse[kMaxSegmentCheckpoints][3][kCapacity];
+  float emitted[kMaxSegmentCheckpoints][3][kCapacity];
 
-  void begin_recording() {
+  void begin_recording(bool with_emission) {
     mode = Mode::Record;
+    emission = with_emission;
     count = next = checkpoints = 0;
     samples = 0;
   }
@@ -77,7 +81,7 @@ struct SegmentTape {
     for (int j = 0; j < n; ++j) {
       depth[j].direct = direct[j][i];
       depth[j].diffuse = vec3(diffuse[j][0][i], diffuse[j][1][i], diffuse[j][2][i]);
-      depth[j].emitted = vec3(0.0f);
+      depth[j].emitted = emission ? vec3(emitted[j][0][i], emitted[j][1][i], emitted[j][2][i]) : vec3(0.0f);
     }
     return true;
   }

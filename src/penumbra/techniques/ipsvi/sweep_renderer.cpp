@@ -191,9 +191,9 @@ void IpsviRenderer::render(const Scene& scene, Image& image, RenderStats* stats)
     kernel.piecewise = settings_.piecewise_integration;
     kernel.paper = paper;
     kernel.cone_phase = cone_phase;
-    // The grey model's light segments as SIMD packets where this view can
-    // have them (the shadow view's volume is the view's).
-    const SimdTarget target = settings_.piecewise_integration && !paper ? packet_target(lit_shadow) : SimdTarget::Scalar;
+    // The light segments as SIMD packets where this view can have them (the
+    // shadow view's volume is the view's).
+    const SimdTarget target = settings_.piecewise_integration ? packet_target(lit_shadow) : SimdTarget::Scalar;
     const SegmentTapeMarch tape_march = segment_tape_march(target);
     if (tape_march) simd = target;
 
@@ -259,7 +259,7 @@ void IpsviRenderer::render(const Scene& scene, Image& image, RenderStats* stats)
         TexelStep steps[IlluminationCache::kResolveChunk];
         bool marched[IlluminationCache::kResolveChunk];
         SegmentTape* tape = tape_march ? &thread_tape() : nullptr;
-        if (tape) tape->begin_recording();
+        if (tape) tape->begin_recording(paper);
         std::uint64_t samples = 0;
         for (int i = 0; i < n; ++i) {
           marched[i] = plan_step(texels[i], stored[i], written[i], steps[i]);
@@ -321,7 +321,7 @@ void IpsviRenderer::render(const Scene& scene, Image& image, RenderStats* stats)
                   const float offset = pixel_sample_offset(lit, bp.x, bp.y);
                   if (tape) {
                     // The ray's light segments as packets (segment_tape.h).
-                    tape->begin_recording();
+                    tape->begin_recording(paper);
                     IpsviRayCounts recording;
                     trace_ipsvi_ray(kernel, sampler, ray, offset, exit, recording, tape);
                     tape_march(lit_shadow, scattering, *tape);
