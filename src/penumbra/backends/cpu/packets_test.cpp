@@ -164,7 +164,7 @@ double max_difference(const Image& a, const Image& b) {
 const std::vector<std::pair<std::string, ParameterSettings>> kPacketVariants = {
     {"occlusion-map", {{"mode", std::string("dvr")}}},
     {"ipsvi", {{"albedo", 0.5}}},
-    {"ipsvi", {{"albedo", 0.5}, {"light_model", std::string("paper")}}}};
+    {"ipsvi", {{"light_model", std::string("paper")}}}};
 
 TEST(PacketPath, EveryTechniqueMatchesTheScalarPath) {
   const std::vector<SimdMode> modes = packet_modes();
