@@ -55,6 +55,7 @@ struct IpsviRayCounts {
   std::uint64_t view_samples = 0;   // samples of the viewing rays
   std::uint64_t light_samples = 0;  // samples of piecewise-integration segments
   std::uint64_t exact_plane_rays = 0;  // plane hits on a shadow edge that marched their own light ray
+  std::uint64_t packet_segments = 0;   // light segments taken from the tape (segment_tape.h)
 };
 
 // Below this sine of the angle between the light and the viewing ray a

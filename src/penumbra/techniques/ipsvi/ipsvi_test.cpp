@@ -14,6 +14,7 @@
 // texel, which on these 48^3 scenes is a few dE on the edge pixels and a mean
 // well below 1 over the image.
 #include "penumbra/analysis/image_metrics.h"
+#include "penumbra/backends/cpu/packets.h"
 #include "penumbra/base/error.h"
 #include "penumbra/render/scene_resources.h"
 #include "penumbra/techniques/ipsvi/early_termination.h"
@@ -492,6 +493,27 @@ TEST(Ipsvi, ForwardScatteringLightensShadowsAndReducesToSingleScatteringWithoutA
               before / std::max(shadowed, 1), after / std::max(shadowed, 1));
   EXPECT_GT(shadowed, 50);
   EXPECT_GT(after, 1.2 * before);
+}
+
+// A ray records at most a tape's worth of light segments for the packets
+// (segment_tape.h); the rest it marches itself while replaying, and the
+// resolve step's chunks do the same. With a tape of 16 the spheres' rays and
+// chunks overflow it: the same image as with a tape that holds them all, with
+// fewer segments as packets (3835 against 6983 at albedo 0).
+TEST(Ipsvi, SegmentsBeyondTheTapeAreMarchedOneAtATime) {
+  if (active_simd_target() == SimdTarget::Scalar) GTEST_SKIP() << "no SIMD target: no packets";
+  const Scene scene = with_floor(lit_spheres());
+  IpsviSettings small;
+  small.segment_tape_limit = 16;
+  for (const float albedo : {0.0f, 0.5f}) {
+    IpsviSettings full;
+    full.albedo = small.albedo = albedo;
+    const Rendered all = render_ipsvi(scene, full);
+    const Rendered some = render_ipsvi(scene, small);
+    EXPECT_GT(some.counts.packet_segments, 0u);
+    EXPECT_LT(double(some.counts.packet_segments), 0.7 * double(all.counts.packet_segments));
+    EXPECT_LE(rmse(some.image, all.image), 1e-6) << albedo;
+  }
 }
 
 TEST(Ipsvi, RebuildsOnlyWhenLightsDataClipPlanesOrCacheSizeChange) {

@@ -29,6 +29,7 @@ struct SegmentTape {
   static constexpr int kMaxWidth = 16;
 
   Mode mode = Mode::Record;
+  int limit = kCapacity;  // segments recorded at most (tests lower it to exercise the overflow)
   bool emission = false;  // the paper's light model: emitted colour too
   int count = 0;        // segments recorded
   int next = 0;         // the next one to replay
@@ -64,7 +65,7 @@ struct SegmentTape {
   // Records a segment (light_segment_depths' arguments); past the capacity
   // nothing, and the replay marches that segment itself.
   PENUMBRA_HD void record(vec3 p, vec3 toward_light, const float* segment_lengths, int n) {
-    if (count >= kCapacity) return;
+    if (count >= limit) return;
     const int i = count++;
     for (int a = 0; a < 3; ++a) {
       from[a][i] = p[a];

@@ -43,9 +43,11 @@ SegmentTapeMarch segment_tape_march(SimdTarget target) {
   }
 }
 
-// Each thread's tape of light segments (segment_tape.h), 64 KiB, kept.
-SegmentTape& thread_tape() {
+// Each thread's tape of light segments (segment_tape.h), 94 KiB, kept;
+// `limit` segments at most (0: its capacity).
+SegmentTape& thread_tape(int limit) {
   thread_local std::unique_ptr<SegmentTape> tape = std::make_unique<SegmentTape>();
+  tape->limit = limit > 0 ? std::min(limit, SegmentTape::kCapacity) : SegmentTape::kCapacity;
   return *tape;
 }
 
@@ -155,7 +157,8 @@ void IpsviRenderer::render(const Scene& scene, Image& image, RenderStats* stats)
   const PixelRect volume_rect = projected_box_rect(view.camera, width, height, view.box);
   // Planes need every pixel: a floor outside the volume's footprint may lie in its shadow.
   const PixelRect rect = view.plane_count > 0 ? image_rect : volume_rect;
-  std::atomic<std::uint64_t> view_samples{0}, light_samples{0}, write_samples{0}, exact_plane_rays{0};
+  std::atomic<std::uint64_t> view_samples{0}, light_samples{0}, write_samples{0}, exact_plane_rays{0},
+      packet_segments{0};
   std::vector<BlockPixel> block;
   SimdTarget simd = SimdTarget::Scalar;  // what the light segments ran as
 
@@ -258,36 +261,34 @@ void IpsviRenderer::render(const Scene& scene, Image& image, RenderStats* stats)
                          CachedLight* out) {
         TexelStep steps[IlluminationCache::kResolveChunk];
         bool marched[IlluminationCache::kResolveChunk];
-        SegmentTape* tape = tape_march ? &thread_tape() : nullptr;
-        if (tape) tape->begin_recording(paper);
+        SegmentTape* tape = tape_march ? &thread_tape(settings_.segment_tape_limit) : nullptr;
         std::uint64_t samples = 0;
+        if (tape) tape->begin_recording(paper);
         for (int i = 0; i < n; ++i) {
           marched[i] = plan_step(texels[i], stored[i], written[i], steps[i]);
           if (!marched[i]) {
             out[i] = steps[i].target;
           } else if (tape) {
             tape->record(steps[i].from, steps[i].to_light, &steps[i].delta, 1);
-          } else {
-            const TexelStep& step = steps[i];
-            const OpticalDepth tau =
-                kernel.paper
-                    ? light_segment_depth<true>(lit_shadow, sampler, step.from, step.to_light, step.delta, scattering,
-                                                samples)
-                    : light_segment_depth(lit_shadow, sampler, step.from, step.to_light, step.delta, scattering,
-                                          samples);
-            out[i] = finish_step(step, stored[i], tau);
           }
         }
         if (tape && tape->count > 0) {
           tape_march(lit_shadow, scattering, *tape);
           samples += tape->samples;
-          tape->begin_replay();
-          for (int i = 0; i < n; ++i) {
-            if (!marched[i]) continue;
-            OpticalDepth tau;
-            tape->replay(&tau, 1);
-            out[i] = finish_step(steps[i], stored[i], tau);
+          packet_segments.fetch_add(std::uint64_t(tape->count), std::memory_order_relaxed);
+        }
+        if (tape) tape->begin_replay();
+        for (int i = 0; i < n; ++i) {
+          if (!marched[i]) continue;
+          const TexelStep& step = steps[i];
+          OpticalDepth tau;
+          if (!tape || !tape->replay(&tau, 1)) {  // one at a time, or past the tape's capacity
+            tau = kernel.paper ? light_segment_depth<true>(lit_shadow, sampler, step.from, step.to_light, step.delta,
+                                                           scattering, samples)
+                               : light_segment_depth(lit_shadow, sampler, step.from, step.to_light, step.delta,
+                                                     scattering, samples);
           }
+          out[i] = finish_step(step, stored[i], tau);
         }
         write_samples.fetch_add(samples, std::memory_order_relaxed);
       };
@@ -313,7 +314,7 @@ void IpsviRenderer::render(const Scene& scene, Image& image, RenderStats* stats)
               0, std::int64_t(block.size()),
               [&](std::int64_t begin, std::int64_t end) {
                 IpsviRayCounts counts;
-                SegmentTape* tape = tape_march ? &thread_tape() : nullptr;
+                SegmentTape* tape = tape_march ? &thread_tape(settings_.segment_tape_limit) : nullptr;
                 for (std::int64_t i = begin; i < end; ++i) {
                   const BlockPixel& bp = block[std::size_t(i)];
                   const Ray ray = lit.camera.pixel_ray(float(bp.x) + 0.5f, float(bp.y) + 0.5f, width, height);
@@ -326,6 +327,7 @@ void IpsviRenderer::render(const Scene& scene, Image& image, RenderStats* stats)
                     trace_ipsvi_ray(kernel, sampler, ray, offset, exit, recording, tape);
                     tape_march(lit_shadow, scattering, *tape);
                     counts.light_samples += tape->samples;
+                    counts.packet_segments += std::uint64_t(tape->count);
                     tape->begin_replay();
                   }
                   const vec4 c = trace_ipsvi_ray(kernel, sampler, ray, offset, exit, counts, tape);
@@ -336,6 +338,7 @@ void IpsviRenderer::render(const Scene& scene, Image& image, RenderStats* stats)
                 view_samples.fetch_add(counts.view_samples, std::memory_order_relaxed);
                 light_samples.fetch_add(counts.light_samples, std::memory_order_relaxed);
                 exact_plane_rays.fetch_add(counts.exact_plane_rays, std::memory_order_relaxed);
+                packet_segments.fetch_add(counts.packet_segments, std::memory_order_relaxed);
               },
               8);
           cache_.resolve_chunks(advance);
@@ -355,6 +358,7 @@ void IpsviRenderer::render(const Scene& scene, Image& image, RenderStats* stats)
   counts_.light_samples = light_samples.load();
   counts_.write_samples = write_samples.load();
   counts_.exact_plane_rays = exact_plane_rays.load();
+  counts_.packet_segments = packet_segments.load();
   if (stats) {
     stats->samples += counts_.view_samples;
     stats->rays += std::uint64_t(width) * std::uint64_t(height) * lights_.size();

@@ -40,6 +40,7 @@ struct IpsviSettings {
   bool early_termination = false;
   float band_deg = 5.0f;        // zone-border blending (point lights)
   IpsviLightModel light_model = IpsviLightModel::Grey;  // light_model.h
+  int segment_tape_limit = 0;   // light segments one ray records for packets (segment_tape.h; 0: all it can hold)
   bool operator==(const IpsviSettings&) const = default;
 };
 
@@ -49,6 +50,7 @@ struct IpsviFrameCounts {
   std::uint64_t write_samples = 0;    // piecewise-integration samples of cache writes
   std::uint64_t prepass_samples = 0;  // ERT extension pre-pass
   std::uint64_t exact_plane_rays = 0;  // plane hits on a shadow edge that marched their own light ray
+  std::uint64_t packet_segments = 0;   // light segments (rays' and resolve's) marched as SIMD packets
   std::uint64_t blocks = 0;           // blocks of lines processed (synchronisation points)
 };
 
