@@ -159,7 +159,9 @@ PENUMBRA_HD void light_segment_depths(const RenderView& v, const Sampler& sample
   OpticalDepthL<ScalarLanes> lane_depth[kMaxSegmentCheckpoints];
   light_segment_depths_lanes<Emission, ScalarLanes>(v, sampler, &ray, lengths, count, true, scattering, lane_depth,
                                                     samples);
-  for (int j = 0; j < count; ++j) depth[j] = OpticalDepth{lane_depth[j].direct, lane_depth[j].diffuse, lane_depth[j].emitted};
+  for (int j = 0; j < count; ++j) {
+    depth[j] = OpticalDepth{lane_depth[j].direct, lane_depth[j].diffuse, lane_depth[j].emitted};
+  }
 }
 
 template <bool Emission = false, class Sampler>

@@ -247,8 +247,8 @@ void IpsviRenderer::render(const Scene& scene, Image& image, RenderStats* stats)
         out.direct = stored.direct * exp_nonpositive(-tau.direct);
         if (kernel.paper) out.color = stored.color * exp_nonpositive(-tau.direct) + tau.emitted;
         if (scattering.has_diffuse()) {
-          const vec2 spread =
-              std::sqrt(step.delta * scattering.spread_per_length) / kernel.projection.texel_world_size(step.target.depth);
+          const vec2 spread = std::sqrt(step.delta * scattering.spread_per_length) /
+                              kernel.projection.texel_world_size(step.target.depth);
           out.diffuse = kernel.cache.read_diffuse(step.center, spread) *
                         vec3(exp_nonpositive(-tau.diffuse.r), exp_nonpositive(-tau.diffuse.g),
                              exp_nonpositive(-tau.diffuse.b));
