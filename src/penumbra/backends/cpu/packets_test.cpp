@@ -129,12 +129,13 @@ ParameterSettings quick_params(const TechniqueInfo& info) {
 
 // The techniques whose render is the shared loop with a packet-capable
 // Lighting (every render_lit technique, emission-absorption and phong), and
-// occlusion-map, whose soft-shadow marches run as packets, and ipsvi, whose
-// light segments do.
-const std::set<std::string> kPacketTechniques = {"emission-absorption", "phong",      "shadow-rays",
-                                                 "filtered-sat",        "sat-ao",     "cone-shadows",
-                                                 "ambient-scattering",  "shadow-map", "deep-shadow-map",
-                                                 "cssm",                "occlusion-map", "ipsvi"};
+// occlusion-map, whose soft-shadow marches run as packets, ipsvi, whose
+// light segments do, and convolution, whose carried light is read as them.
+const std::set<std::string> kPacketTechniques = {"emission-absorption", "phong",         "shadow-rays",
+                                                 "filtered-sat",        "sat-ao",        "cone-shadows",
+                                                 "ambient-scattering",  "shadow-map",    "deep-shadow-map",
+                                                 "cssm",                "occlusion-map", "ipsvi",
+                                                 "convolution"};
 
 // Prepares once (light-space structures do not depend on the packet mode;
 // building them once per scene rather than per mode keeps this test quick)

@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <cmath>
+#include <vector>
 
 namespace penumbra {
 
@@ -153,54 +154,67 @@ void CarriedLights::advance(int l, const float* out, const MediumMask& medium, c
   }
 }
 
+namespace {
+
+// The row read as packets on the active SIMD target, or nullptr.
+CarriedRowRead carried_row_packets() {
+  switch (active_simd_target()) {
+#if defined(PENUMBRA_SIMD_AVX3)
+    case SimdTarget::Avx3: return &read_carried_row_packets<SimdTarget::Avx3>;
+#endif
+#if defined(PENUMBRA_SIMD_AVX2)
+    case SimdTarget::Avx2: return &read_carried_row_packets<SimdTarget::Avx2>;
+#endif
+    default: return nullptr;
+  }
+}
+
+}  // namespace
+
+SimdTarget CarriedLights::target() const {
+  bool any = false;
+  for (const char c : carried_) any = any || c;
+  return any && carried_row_packets() && channels_ <= CarriedReadView::kMaxChannels ? active_simd_target()
+                                                                                   : SimdTarget::Scalar;
+}
+
 std::uint64_t CarriedLights::propagate(int l, const SlabFrame& frame, const SlabKernel& kernel, const float* out,
                                        float* incoming, const MediumMask& medium, const SlabMapping& mapping,
                                        vec2 w) const {
   const CarriedGrid& g = grids_[std::size_t(l)];
   const std::size_t plane = std::size_t(g.width) * std::size_t(g.height);
   const std::size_t frame_plane = std::size_t(frame_width_) * std::size_t(frame_height_);
-  const float* t =
-      texels_.data() + base_[std::size_t(l)] + std::size_t(half_[std::size_t(l)]) * std::size_t(channels_ + 1) * plane;
-  const float* touched = t + std::size_t(channels_) * plane;
-  const float clear_since = float(steps_[std::size_t(l)] - min_age_);  // the latest touch a texel may have
+  CarriedReadView r;
+  r.medium = medium.view();
+  r.grid = g;
+  r.texels = texels_.data() + base_[std::size_t(l)] +
+             std::size_t(half_[std::size_t(l)]) * std::size_t(channels_ + 1) * plane;
+  r.touched = r.texels + std::size_t(channels_) * plane;
+  r.channels = channels_;
+  r.plane = plane;
+  r.clear_since = float(steps_[std::size_t(l)] - min_age_);
+  r.map_center = mapping.center;
+  r.map_scale = mapping.scale;
+  r.w = w;
+  // Packets need 32-bit gather offsets into the grid.
+  const CarriedRowRead packets =
+      plane < (std::size_t(1) << 31) && channels_ <= CarriedReadView::kMaxChannels ? carried_row_packets() : nullptr;
   std::atomic<std::uint64_t> free{0};
   parallel_for(0, frame_height_, [&](std::int64_t first, std::int64_t last) {
+    std::vector<std::uint8_t> needs(static_cast<std::size_t>(frame_width_));
     std::uint64_t count = 0;
     for (std::int64_t y = first; y < last; ++y) {
+      std::fill(needs.begin(), needs.end(), std::uint8_t(0));
+      count += packets ? packets(r, frame_width_, int(y), frame_plane, incoming, needs.data())
+                       : read_carried_row<ScalarLanes>(r, frame_width_, int(y), frame_plane, incoming, needs.data());
+      // Elsewhere the light re-sampled by the slab step.
       for (int x = 0; x < frame_width_; ++x) {
-        const vec2 p(float(x) + 0.5f, float(y) + 0.5f);
+        if (!needs[std::size_t(x)]) continue;
         const std::size_t i = std::size_t(x) + std::size_t(frame_width_) * std::size_t(y);
-        const auto resampled = [&] {
-          for (int c = 0; c < channels_; ++c) {
-            incoming[std::size_t(c) * frame_plane + i] =
-                convolve_texel_mapped(frame, mapping, kernel, out + std::size_t(c) * frame_plane, x, int(y));
-          }
-        };
-        const vec2 from = mapping.center + mapping.scale * (p - mapping.center) + w;  // where its light came from
-        if (medium.touches(from)) {
-          resampled();
-          continue;
-        }
-        // The four texels a bilinear read at p takes (clamp-to-edge): all
-        // clear of any medium for min_age slabs, or the re-sampled light.
-        const vec2 f = g.texel_of(p) - vec2(0.5f);
-        const float fx0 = std::floor(f.x), fy0 = std::floor(f.y);
-        const float tx = f.x - fx0, ty = f.y - fy0;
-        const int x0 = glm::clamp(int(fx0), 0, g.width - 1), x1 = glm::clamp(int(fx0) + 1, 0, g.width - 1);
-        const std::size_t r0 = std::size_t(g.width) * std::size_t(glm::clamp(int(fy0), 0, g.height - 1));
-        const std::size_t r1 = std::size_t(g.width) * std::size_t(glm::clamp(int(fy0) + 1, 0, g.height - 1));
-        const std::size_t i00 = r0 + std::size_t(x0), i10 = r0 + std::size_t(x1), i01 = r1 + std::size_t(x0),
-                          i11 = r1 + std::size_t(x1);
-        if (glm::max(glm::max(touched[i00], touched[i10]), glm::max(touched[i01], touched[i11])) > clear_since) {
-          resampled();
-          continue;
-        }
         for (int c = 0; c < channels_; ++c) {
-          const float* v = t + std::size_t(c) * plane;
           incoming[std::size_t(c) * frame_plane + i] =
-              (1.0f - ty) * ((1.0f - tx) * v[i00] + tx * v[i10]) + ty * ((1.0f - tx) * v[i01] + tx * v[i11]);
+              convolve_texel_mapped(frame, mapping, kernel, out + std::size_t(c) * frame_plane, x, int(y));
         }
-        ++count;
       }
     }
     free.fetch_add(count, std::memory_order_relaxed);

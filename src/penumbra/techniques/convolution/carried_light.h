@@ -45,6 +45,8 @@
 // sized for (at most one per halving of scale; never with an orthographic
 // camera). Texels beyond the grid's edge are its edge texels (clamp-to-edge),
 // as for the pixel grid's buffers.
+#include "penumbra/backends/cpu/packets.h"
+#include "penumbra/base/lanes.h"
 #include "penumbra/base/math.h"
 #include "penumbra/techniques/convolution/light_propagation.h"
 
@@ -88,6 +90,23 @@ ivec2 shift_carried_grid(CarriedGrid& grid, const float* from, float* to, int pl
 // Catmull-Rom read of single-tap slab steps.
 void resample_carried_grid(CarriedGrid& grid, const float* from, float* to, int planes);
 
+// MediumMask's lookup over a lane type.
+struct MediumMaskView {
+  const std::uint8_t* mask = nullptr;  // (width + 1) x (height + 1)
+  int width = 0, height = 0;
+
+  template <class L>
+  PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Mask touches(typename L::Float px, typename L::Float py) const {
+    using F = typename L::Float;
+    using I = typename L::Int;
+    const I x0 = to_int(floor(clamp(px - 0.5f, F(-1.0f), F(float(width - 1)))));
+    const I y0 = to_int(floor(clamp(py - 0.5f, F(-1.0f), F(float(height - 1)))));
+    const I i = (x0 + I(1)) + I(width + 1) * (y0 + I(1));
+    const std::int64_t count = std::int64_t(width + 1) * std::int64_t(height + 1);
+    return load_voxel(mask, typename L::Index(i), count) > F(0.0f);
+  }
+};
+
 // Which frame positions have a medium among the four pixels a bilinear read
 // there takes (clamp-to-edge), for one slab: the slab loop flags the pixels
 // where the slab has optical depth, build() dilates the flags once per slab,
@@ -98,17 +117,107 @@ class MediumMask {
   std::uint8_t* flags() { return any_.data(); }     // per pixel: 1 where the slab has a medium
   void build();
   // p in frame pixel coordinates, pixel centres at +0.5.
-  bool touches(vec2 p) const {
-    const int x0 = int(std::floor(glm::clamp(p.x - 0.5f, -1.0f, float(width_ - 1))));
-    const int y0 = int(std::floor(glm::clamp(p.y - 0.5f, -1.0f, float(height_ - 1))));
-    return mask_[std::size_t(x0 + 1) + std::size_t(width_ + 1) * std::size_t(y0 + 1)] != 0;
-  }
+  bool touches(vec2 p) const { return view().touches<ScalarLanes>(p.x, p.y); }
+  MediumMaskView view() const { return MediumMaskView{mask_.data(), width_, height_}; }
 
  private:
   int width_ = 0, height_ = 0;
   std::vector<std::uint8_t> any_;   // the flags
   std::vector<std::uint8_t> mask_;  // (width + 1) x (height + 1): entry (x0 + 1, y0 + 1) for pixels x0..x0+1, y0..y0+1
 };
+
+// What propagate reads for one light, as a plain view for the lane-generic
+// read below (one source for one pixel and for 8 or 16).
+struct CarriedReadView {
+  static constexpr int kMaxChannels = 3;
+  MediumMaskView medium;  // the last slab's medium
+  CarriedGrid grid;
+  const float* texels = nullptr;   // `channels` planes of grid texels
+  const float* touched = nullptr;  // the plane of the steps at which texels last touched a medium
+  int channels = 1;
+  std::size_t plane = 0;    // texels per plane
+  float clear_since = 0.0f;  // the latest touch a texel may have
+  vec2 map_center{0.0f};     // the slab mapping (SlabMapping) and the tap's offset w
+  float map_scale = 1.0f;
+  vec2 w{0.0f};
+};
+
+// Pixels (px, py) of the lanes in `on`: those whose light crossed no medium
+// in the last slab and whose four texels (a bilinear read, clamp-to-edge)
+// have been clear of any medium since `clear_since` take the carried light,
+// channel c into out[c * L::kWidth + lane]; returns them.
+template <class L>
+PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Mask read_carried_lanes(const CarriedReadView& r, typename L::Float px,
+                                                                      float py, typename L::Mask on, float* out) {
+  using F = typename L::Float;
+  using I = typename L::Int;
+  using X = typename L::Index;
+  const CarriedGrid& g = r.grid;
+  const F from_x = r.map_center.x + r.map_scale * (px - r.map_center.x) + r.w.x;  // where its light came from
+  const F from_y(r.map_center.y + r.map_scale * (py - r.map_center.y) + r.w.y);
+  typename L::Mask free = on & !r.medium.touches<L>(from_x, from_y);
+  if (none(free)) return free;
+  const F fx = g.grid_center.x + ((px - g.center.x) - g.offset.x) / g.scale - 0.5f;
+  const F fy(g.grid_center.y + ((py - g.center.y) - g.offset.y) / g.scale - 0.5f);
+  const F fx0 = floor(fx), fy0 = floor(fy);
+  const F tx = fx - fx0, ty = fy - fy0;
+  const I ix0 = to_int(fx0), iy0 = to_int(fy0);
+  const I x0 = max(I(0), min(ix0, I(g.width - 1))), x1 = max(I(0), min(ix0 + I(1), I(g.width - 1)));
+  const I r0 = I(g.width) * max(I(0), min(iy0, I(g.height - 1)));
+  const I r1 = I(g.width) * max(I(0), min(iy0 + I(1), I(g.height - 1)));
+  const X i00(r0 + x0), i10(r0 + x1), i01(r1 + x0), i11(r1 + x1);
+  const F newest = max(max(gather(r.touched, i00), gather(r.touched, i10)),
+                       max(gather(r.touched, i01), gather(r.touched, i11)));
+  free = free & !(newest > F(r.clear_since));
+  if (none(free)) return free;
+  for (int c = 0; c < r.channels; ++c) {
+    const float* v = r.texels + std::size_t(c) * r.plane;
+    const F value = (1.0f - ty) * ((1.0f - tx) * gather(v, i00) + tx * gather(v, i10)) +
+                    ty * ((1.0f - tx) * gather(v, i01) + tx * gather(v, i11));
+    L::store(value, out + c * L::kWidth);
+  }
+  return free;
+}
+
+// Row y of CarriedLights::propagate, L::kWidth pixels at a time: the carried
+// light into `incoming` (`channels` planes of frame_plane pixels) where it
+// applies, needs[x] = 1 where pixel x must take the re-sampled light instead.
+// Returns the pixels that took the carried light.
+template <class L>
+PENUMBRA_HD std::uint64_t read_carried_row(const CarriedReadView& r, int width, int y, std::size_t frame_plane,
+                                           float* incoming, std::uint8_t* needs) {
+  constexpr int W = L::kWidth;
+  static constexpr float kCentres[16] = {0.5f, 1.5f, 2.5f,  3.5f,  4.5f,  5.5f,  6.5f,  7.5f,
+                                         8.5f, 9.5f, 10.5f, 11.5f, 12.5f, 13.5f, 14.5f, 15.5f};
+  static_assert(W <= 16, "pixel centres for up to 16 lanes");
+  float out[CarriedReadView::kMaxChannels * W];
+  const float py = float(y) + 0.5f;
+  const std::size_t row = std::size_t(width) * std::size_t(y);
+  std::uint64_t taken = 0;
+  for (int x = 0; x < width; x += W) {
+    const int count = width - x < W ? width - x : W;
+    const typename L::Float px = typename L::Float(float(x)) + L::load(kCentres);
+    const std::uint32_t free = L::bits(read_carried_lanes<L>(r, px, py, L::from_bits((1u << count) - 1u), out));
+    for (int i = 0; i < count; ++i) {
+      if ((free >> i) & 1u) {
+        for (int c = 0; c < r.channels; ++c) {
+          incoming[std::size_t(c) * frame_plane + row + std::size_t(x + i)] = out[c * W + i];
+        }
+        ++taken;
+      } else {
+        needs[x + i] = 1;
+      }
+    }
+  }
+  return taken;
+}
+
+// The row read as packets of Target. Defined only in the SIMD units of
+// Target (convolution_packets.cpp).
+template <SimdTarget Target>
+std::uint64_t read_carried_row_packets(const CarriedReadView& r, int width, int y, std::size_t frame_plane,
+                                       float* incoming, std::uint8_t* needs);
+using CarriedRowRead = std::uint64_t (*)(const CarriedReadView&, int, int, std::size_t, float*, std::uint8_t*);
 
 // The carried grids of one frame's zero-variance lights.
 class CarriedLights {
@@ -137,6 +246,9 @@ class CarriedLights {
                           const MediumMask& medium, const SlabMapping& mapping, vec2 w) const;
 
   std::uint64_t bytes() const { return texels_.size() * sizeof(float); }
+  // What propagate reads the carried light as: the active SIMD target when
+  // a light is carried and this build has its packets, else Scalar.
+  SimdTarget target() const;
   static constexpr float kNeverTouched = -1e6f;  // the step a texel that never touched a medium touched it
 
  private:

@@ -526,6 +526,7 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
     stats->samples += samples.load();
     stats->rays += pixels;
     stats->passes += std::uint64_t(slabs);
+    stats->simd = carried_.target();
   }
 }
 
