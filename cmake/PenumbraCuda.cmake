@@ -2,7 +2,9 @@
 # default) builds it whenever nvcc is found (on PATH, CUDACXX or
 # /usr/local/cuda), ON requires it, OFF leaves it out. Device code is compiled
 # for sm_90 (H100/H200) plus compute_90 PTX, which newer GPUs JIT; override
-# with -DCMAKE_CUDA_ARCHITECTURES. Every CUDA unit samples all voxel types
+# with -DCMAKE_CUDA_ARCHITECTURES or CMake's CUDAARCHS environment variable
+# (.ci/run sets 90-virtual on a machine without a GPU: PTX only, the device
+# code's compile check without assembling it). Every CUDA unit samples all voxel types
 # through one switch, so each Lighting compiles once (compile time: CI).
 set(PENUMBRA_ENABLE_CUDA AUTO CACHE STRING "Build the CUDA backend: AUTO (when nvcc is found), ON or OFF")
 set_property(CACHE PENUMBRA_ENABLE_CUDA PROPERTY STRINGS AUTO ON OFF)
@@ -15,7 +17,7 @@ if(NOT PENUMBRA_ENABLE_CUDA STREQUAL "OFF")
   include(CheckLanguage)
   check_language(CUDA)
   if(CMAKE_CUDA_COMPILER)
-    if(NOT DEFINED CMAKE_CUDA_ARCHITECTURES)
+    if(NOT DEFINED CMAKE_CUDA_ARCHITECTURES AND NOT DEFINED ENV{CUDAARCHS})
       set(CMAKE_CUDA_ARCHITECTURES 90)
     endif()
     enable_language(CUDA)
