@@ -43,6 +43,23 @@ int simd_width(SimdTarget target);
 // bytes).
 SimdTarget packet_target(const RenderView& view);
 
+// The function a SIMD unit defines for `target`, or nullptr where this build
+// has no unit of that target: pick.template operator()<T>() names the
+// function of target T, e.g. []<SimdTarget T>() { return &march<T>; }. Only
+// for scalar units: a SIMD unit must not name another target's function.
+template <class Pick> auto simd_unit_function(SimdTarget target, const Pick& pick) {
+  using Function = decltype(pick.template operator()<SimdTarget::Scalar>());
+  switch (target) {
+#if defined(PENUMBRA_SIMD_AVX3)
+    case SimdTarget::Avx3: return Function(pick.template operator()<SimdTarget::Avx3>());
+#endif
+#if defined(PENUMBRA_SIMD_AVX2)
+    case SimdTarget::Avx2: return Function(pick.template operator()<SimdTarget::Avx2>());
+#endif
+    default: return Function(nullptr);
+  }
+}
+
 template <class Lighting> struct PacketLighting : std::false_type {};
 
 struct RayStats;

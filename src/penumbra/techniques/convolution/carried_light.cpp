@@ -158,15 +158,7 @@ namespace {
 
 // The row read as packets on the active SIMD target, or nullptr.
 CarriedRowRead carried_row_packets() {
-  switch (active_simd_target()) {
-#if defined(PENUMBRA_SIMD_AVX3)
-    case SimdTarget::Avx3: return &read_carried_row_packets<SimdTarget::Avx3>;
-#endif
-#if defined(PENUMBRA_SIMD_AVX2)
-    case SimdTarget::Avx2: return &read_carried_row_packets<SimdTarget::Avx2>;
-#endif
-    default: return nullptr;
-  }
+  return simd_unit_function(active_simd_target(), []<SimdTarget T>() { return &read_carried_row_packets<T>; });
 }
 
 }  // namespace

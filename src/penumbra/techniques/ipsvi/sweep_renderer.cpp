@@ -32,15 +32,7 @@ struct BlockPixel {
 
 // The tape march for `target`, or nullptr where this build has none.
 SegmentTapeMarch segment_tape_march(SimdTarget target) {
-  switch (target) {
-#if defined(PENUMBRA_SIMD_AVX3)
-    case SimdTarget::Avx3: return &march_segment_tape<SimdTarget::Avx3>;
-#endif
-#if defined(PENUMBRA_SIMD_AVX2)
-    case SimdTarget::Avx2: return &march_segment_tape<SimdTarget::Avx2>;
-#endif
-    default: return nullptr;
-  }
+  return simd_unit_function(target, []<SimdTarget T>() { return &march_segment_tape<T>; });
 }
 
 // Each thread's tape of light segments (segment_tape.h), 94 KiB, kept;

@@ -51,15 +51,7 @@ template <int K> std::uint64_t render_isosurface_device(const OcclusionShadingSe
 // this build has none. (Not in soft_shadow_batch.h: a SIMD unit must not
 // instantiate the other target's march.)
 inline SoftShadowMarch soft_shadow_march(SimdTarget target) {
-  switch (target) {
-#if defined(PENUMBRA_SIMD_AVX3)
-    case SimdTarget::Avx3: return &march_soft_shadows<SimdTarget::Avx3>;
-#endif
-#if defined(PENUMBRA_SIMD_AVX2)
-    case SimdTarget::Avx2: return &march_soft_shadows<SimdTarget::Avx2>;
-#endif
-    default: return nullptr;
-  }
+  return simd_unit_function(target, []<SimdTarget T>() { return &march_soft_shadows<T>; });
 }
 
 // One tile with its soft shadows marched as packets (soft_shadow_batch.h):
