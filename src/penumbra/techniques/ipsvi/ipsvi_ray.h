@@ -85,6 +85,12 @@ struct RayCacheState {
   // Light segments recorded or replayed (segment_tape.h); null: each
   // sample marches its own.
   SegmentTape* tape = nullptr;
+  // The colour has reached the ERT opacity: with piecewise integration the
+  // samples after it only join the cache's runs (their depths), so they read
+  // no value and no colour, and a recording ray stops (ipsvi_march). Up to
+  // `exit_t` (the ERT extension's exit depth, +inf without it).
+  bool colour_done = false;
+  float exit_t = kInfinity;
 
   PENUMBRA_HD bool recording() const { return tape && tape->recording(); }
 };
@@ -332,6 +338,16 @@ PENUMBRA_HD void ipsvi_march(const IpsviKernel& k, const Sampler& sampler, const
   float t;
   while (cursor.next(kk, t)) {
     ++counts.view_samples;
+    if (st.colour_done && k.piecewise) {
+      // Behind the terminated colour nothing asks for light: a recording
+      // ray is done, and otherwise the sample only extends the open run,
+      // as below with the light unasked.
+      if (st.recording()) break;
+      const vec3 proj = k.projection.project(walk.at(t));
+      if (k.cache.covers(vec2(proj))) add_to_run(k, vec2(proj), proj.z, CachedLight{}, st);
+      if (!((forward ? t : tb - t) < st.exit_t)) break;
+      continue;
+    }
     const vec3 index = o + t * d;
     const float value = sampler(index);
     const vec4 c = Sampler::kAlwaysFinite ? tf.lookup_finite(value) : tf.lookup(value);
@@ -377,6 +393,7 @@ PENUMBRA_HD vec4 trace_ipsvi_ray(const IpsviKernel& k, const Sampler& sampler, c
   RayCacheState st;
   st.ray_direction = ray.direction;
   st.tape = tape;
+  st.exit_t = exit_t;
   const bool recording = st.recording();  // only the light segments matter
 
   // The part beyond the light's closest approach, front to back, then what
@@ -396,6 +413,7 @@ PENUMBRA_HD vec4 trace_ipsvi_ray(const IpsviKernel& k, const Sampler& sampler, c
                   }
                   transmittance *= 1.0f - alpha;
                   terminated = transmittance <= min_transmittance;
+                  st.colour_done = terminated;
                 }
                 return !terminated || t < exit_t;
               });
@@ -419,6 +437,7 @@ PENUMBRA_HD vec4 trace_ipsvi_ray(const IpsviKernel& k, const Sampler& sampler, c
   // The part before it, back to front over what is behind.
   float front_transmittance = 1.0f;
   st.texel = -1;
+  st.colour_done = false;  // before the light's closest approach every sample is shaded
   ipsvi_march(k, sampler, ray, iv.t0, split, false, offset, st, counts,
               [&](float, const SamplePoint& s, float length, auto&& visibility) {
                 if (s.sigma_t > 0.0f) {
