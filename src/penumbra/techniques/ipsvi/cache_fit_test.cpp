@@ -1,7 +1,9 @@
 // The cache fitted to the camera (section 5.2): everything the camera sees of
 // the box, and every visible floor point whose light ray crosses the box,
 // lands inside the cache; zooming in keeps the cache's size bounded, and its
-// texels about a pixel wide across the light.
+// texels about a pixel wide across the light. A trimmed grid (the automatic
+// cache of ipsvi) covers the same with fewer texels where the fitted
+// rectangle is long.
 #include "penumbra/techniques/ipsvi/cache_fit.h"
 
 #include "test_scene.h"
@@ -30,7 +32,7 @@ bool seen(const CameraView& c, vec3 p) {
 
 bool inside_cache(const LightCacheProjection& p, vec3 point) {
   const vec3 q = p.project(point);
-  return q.x >= 0.0f && q.y >= 0.0f && q.x <= float(p.size) && q.y <= float(p.size);
+  return q.x >= 0.0f && q.y >= 0.0f && q.x <= float(p.size) && q.y <= float(p.rows);
 }
 
 Camera zoomed(float fov_deg) {
@@ -42,36 +44,49 @@ Camera zoomed(float fov_deg) {
 
 
 TEST(CacheFit, CoversWhatTheCameraSeesAndKeepsItsSizeWhenZooming) {
+  int trimmed_at_3 = 0;
   for (const Light& light : {testing::directional_light(vec3(1.0f, 0.2f, -0.3f)), testing::directional_light(vec3(0.3f, -0.5f, -1.0f)),
                              testing::point_light(vec3(60.0f, -80.0f, 50.0f))}) {
-    int size_at_9 = 0;
-    for (const float fov : {32.0f, 9.0f, 3.0f}) {
-      const CameraView view = zoomed(fov).view();
-      const LightCacheRegion region = visible_cache_region(view, kFitWidth, kFitHeight, kFitBox, nullptr, 0);
-      const LightCacheProjection p = fit_light_cache_projection(light, kFitBox, region, 0, 2 * kFitWidth);
-      int seen_points = 0;
-      for (int i = 0; i < 40 * 40 * 40; ++i) {
-        const vec3 f((float(i % 40) + 0.5f) / 40.0f, (float(i / 40 % 40) + 0.5f) / 40.0f, (float(i / 1600) + 0.5f) / 40.0f);
-        const vec3 x = kFitBox.lower + f * kFitBox.extent();
-        if (!seen(view, x)) continue;
-        ++seen_points;
-        ASSERT_TRUE(inside_cache(p, x)) << "fov " << fov << ", point " << x.x << " " << x.y << " " << x.z;
-      }
-      EXPECT_GT(seen_points, 20);
-      if (fov == 9.0f) size_at_9 = p.size;
-      std::printf("fov %4.1f: cache %d^2, texel %.3f x %.3f, pixel %.3f\n", fov, p.size,
-                  p.texel_world_size(50.0f).x, p.texel_world_size(50.0f).y, region.pixel);
-      // Over the whole box the cache would grow 3x per side from fov 9 to 3.
-      EXPECT_LE(p.size, 2 * kFitWidth) << "fov " << fov;
-      if (fov == 3.0f) {
-        EXPECT_LE(p.size, int(1.6f * float(size_at_9)));
-      }
-      if (light.at_infinity() && fov < 32.0f) {
-        // Across the light the texels follow the pixel (up to the 2^(1/4) snap).
-        EXPECT_LE(p.texel_world_size(0.0f).y, 1.2f * region.pixel) << "fov " << fov;
+    for (const bool trim : {false, true}) {
+      int size_at_9 = 0;
+      for (const float fov : {32.0f, 9.0f, 3.0f}) {
+        const CameraView view = zoomed(fov).view();
+        const LightCacheRegion region = visible_cache_region(view, kFitWidth, kFitHeight, kFitBox, nullptr, 0);
+        const LightCacheProjection p = fit_light_cache_projection(light, kFitBox, region, 0, 2 * kFitWidth, trim);
+        const LightCacheProjection square = fit_light_cache_projection(light, kFitBox, region, 0, 2 * kFitWidth);
+        ASSERT_EQ(std::max(p.size, p.rows), square.size);
+        if (!trim) {
+          ASSERT_EQ(p.rows, p.size);
+        } else if (fov == 3.0f && p.size * p.rows < square.size * square.size) {
+          ++trimmed_at_3;
+        }
+        int seen_points = 0;
+        for (int i = 0; i < 40 * 40 * 40; ++i) {
+          const vec3 f((float(i % 40) + 0.5f) / 40.0f, (float(i / 40 % 40) + 0.5f) / 40.0f, (float(i / 1600) + 0.5f) / 40.0f);
+          const vec3 x = kFitBox.lower + f * kFitBox.extent();
+          if (!seen(view, x)) continue;
+          ++seen_points;
+          ASSERT_TRUE(inside_cache(p, x)) << "fov " << fov << ", point " << x.x << " " << x.y << " " << x.z;
+        }
+        EXPECT_GT(seen_points, 20);
+        const int side = std::max(p.size, p.rows);
+        if (fov == 9.0f) size_at_9 = side;
+        std::printf("fov %4.1f%s: cache %d x %d, texel %.3f x %.3f, pixel %.3f\n", fov, trim ? ", trimmed" : "", p.size,
+                    p.rows, p.texel_world_size(50.0f).x, p.texel_world_size(50.0f).y, region.pixel);
+        // Over the whole box the cache would grow 3x per side from fov 9 to 3.
+        EXPECT_LE(side, 2 * kFitWidth) << "fov " << fov;
+        if (fov == 3.0f) {
+          EXPECT_LE(side, int(1.6f * float(size_at_9)));
+        }
+        if (light.at_infinity() && fov < 32.0f) {
+          // Across the light the texels follow the pixel (up to the 2^(1/4) snap).
+          EXPECT_LE(p.texel_world_size(0.0f).y, 1.2f * region.pixel) << "fov " << fov;
+        }
       }
     }
   }
+  // Zoomed in, the rectangles are long: trimming saves texels for some light.
+  EXPECT_GT(trimmed_at_3, 0);
 }
 
 // A floor below the box, lit at a slant: floor points in view whose light

@@ -1,5 +1,6 @@
 #include "penumbra/techniques/ipsvi/illumination_cache.h"
 
+#include "penumbra/base/error.h"
 #include "penumbra/base/memory_budget.h"
 #include "penumbra/base/parallel.h"
 
@@ -8,11 +9,11 @@ namespace penumbra {
 
 std::vector<vec2> initial_cache_state(const LightCacheProjection& projection, const Box3& box,
                                       const std::vector<vec4>& clip_planes) {
-  const int n = projection.size;
+  const int n = projection.size, rows = projection.rows;
   // Where each texel's light ray enters the box and clip planes (-1: it
   // misses them).
-  std::vector<float> entry(std::size_t(n) * n);
-  parallel_for(0, n, [&](std::int64_t first, std::int64_t last) {
+  std::vector<float> entry(std::size_t(n) * rows);
+  parallel_for(0, rows, [&](std::int64_t first, std::int64_t last) {
     for (std::int64_t y = first; y < last; ++y) {
       for (int x = 0; x < n; ++x) {
         const Ray ray = projection.texel_ray(vec2(float(x) + 0.5f, float(y) + 0.5f));
@@ -30,15 +31,15 @@ std::vector<vec2> initial_cache_state(const LightCacheProjection& projection, co
   // cache grid. Starting earlier costs only empty space: a segment marched
   // toward the light is clipped to the box and planes. Light rays whose
   // whole neighbourhood misses the volume keep depth 0.
-  std::vector<vec2> state(std::size_t(n) * n);
-  parallel_for(0, n, [&](std::int64_t first, std::int64_t last) {
+  std::vector<vec2> state(std::size_t(n) * rows);
+  parallel_for(0, rows, [&](std::int64_t first, std::int64_t last) {
     for (std::int64_t y = first; y < last; ++y) {
       for (int x = 0; x < n; ++x) {
         float earliest = kInfinity;
         for (int dy = -1; dy <= 1; ++dy) {
           for (int dx = -1; dx <= 1; ++dx) {
             const int xx = x + dx, yy = int(y) + dy;
-            if (xx < 0 || yy < 0 || xx >= n || yy >= n) continue;
+            if (xx < 0 || yy < 0 || xx >= n || yy >= rows) continue;
             const float e = entry[std::size_t(xx + n * yy)];
             if (e >= 0.0f) earliest = glm::min(earliest, e);
           }
@@ -50,15 +51,14 @@ std::vector<vec2> initial_cache_state(const LightCacheProjection& projection, co
   return state;
 }
 
-void IlluminationCache::allocate(int size, bool diffuse, bool colored) {
-  const std::uint64_t texels = std::uint64_t(size) * std::uint64_t(size);
+void IlluminationCache::allocate(std::uint64_t texels, bool diffuse, bool colored) {
   const int stride = colored ? IlluminationCacheView::kColorSums : IlluminationCacheView::kSums;
   const std::uint64_t per_texel = sizeof(vec2) + (diffuse ? sizeof(vec4) : 0) +
                                   (colored ? sizeof(vec4) + sizeof(vec3) : 0) +
                                   std::uint64_t(stride) * sizeof(std::uint64_t) + sizeof(std::uint32_t) +
                                   sizeof(Staged);
   check_memory_budget("ipsvi illumination cache", checked_product({texels, per_texel}));
-  size_ = size;
+  size_ = rows_ = 0;
   state_.assign(texels, vec2(1.0f, 0.0f));
   if (diffuse) {
     diffuse_.assign(texels, vec4(1.0f));
@@ -80,7 +80,12 @@ void IlluminationCache::allocate(int size, bool diffuse, bool colored) {
   staged_color_.shrink_to_fit();
 }
 
-void IlluminationCache::reset(const std::vector<vec2>& initial) {
+void IlluminationCache::reset(const std::vector<vec2>& initial, int size, int rows) {
+  if (initial.size() != std::size_t(size) * std::size_t(rows) || initial.size() > state_.size()) {
+    throw Error("ipsvi: a light's cache grid does not fit the allocated cache");
+  }
+  size_ = size;
+  rows_ = rows;
   std::copy(initial.begin(), initial.end(), state_.begin());
   std::fill(diffuse_.begin(), diffuse_.end(), vec4(1.0f));
   std::fill(color_.begin(), color_.end(), vec4(1.0f));
@@ -90,6 +95,7 @@ IlluminationCacheView IlluminationCache::view(float max_depth) {
   max_depth_ = glm::max(max_depth, 1e-6f);
   IlluminationCacheView v;
   v.size = size_;
+  v.rows = rows_;
   v.state = state_.data();
   v.diffuse = diffuse_.empty() ? nullptr : diffuse_.data();
   v.color = color_.empty() ? nullptr : color_.data();

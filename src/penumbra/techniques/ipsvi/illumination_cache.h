@@ -38,7 +38,8 @@ struct IlluminationCacheView {
   static constexpr float kValueScale = 16777216.0f;  // 2^24: fixed-point unit of a value in [0, 1]
   static constexpr float kWeightScale = 65536.0f;    // 2^16
 
-  int size = 0;
+  int size = 0;  // texels along u (a row)
+  int rows = 0;  // texels along v
   const vec2* state = nullptr;    // per texel: (direct transmittance, depth)
   const vec4* diffuse = nullptr;  // per texel: diffuse transmittance (rgb); null without the diffuse part
   const vec4* color = nullptr;    // per texel: the direct light's rgb; null but with the paper's light model
@@ -48,13 +49,13 @@ struct IlluminationCacheView {
   float max_depth = 1.0f;
 
   PENUMBRA_HD bool covers(vec2 uv) const {
-    return uv.x >= 0.0f && uv.y >= 0.0f && uv.x <= float(size) && uv.y <= float(size);
+    return uv.x >= 0.0f && uv.y >= 0.0f && uv.x <= float(size) && uv.y <= float(rows);
   }
 
   // The texel containing uv (which must be covered).
   PENUMBRA_HD int texel_index(vec2 uv) const {
     const int x = glm::clamp(int(uv.x), 0, size - 1);
-    const int y = glm::clamp(int(uv.y), 0, size - 1);
+    const int y = glm::clamp(int(uv.y), 0, rows - 1);
     return x + size * y;
   }
 
@@ -144,11 +145,11 @@ struct IlluminationCacheView {
  private:
   PENUMBRA_HD void corners(vec2 uv, int& x0, int& y0, int& x1, int& y1, float& fx, float& fy) const {
     const float x = glm::clamp(uv.x - 0.5f, 0.0f, float(size - 1));
-    const float y = glm::clamp(uv.y - 0.5f, 0.0f, float(size - 1));
+    const float y = glm::clamp(uv.y - 0.5f, 0.0f, float(rows - 1));
     x0 = int(x);
     y0 = int(y);
     x1 = glm::min(x0 + 1, size - 1);
-    y1 = glm::min(y0 + 1, size - 1);
+    y1 = glm::min(y0 + 1, rows - 1);
     fx = x - float(x0);
     fy = y - float(y0);
   }
@@ -182,11 +183,13 @@ std::vector<vec2> initial_cache_state(const LightCacheProjection& projection, co
 
 class IlluminationCache {
  public:
-  // Checks the memory budget; `diffuse` adds the forward-scattering channel,
-  // `colored` the direct light's colour (the paper's light model).
-  void allocate(int size, bool diffuse, bool colored = false);
-  // Starts a sweep from `initial` (see initial_cache_state).
-  void reset(const std::vector<vec2>& initial);
+  // Room for `texels` texels (the largest of the lights' grids). Checks the
+  // memory budget; `diffuse` adds the forward-scattering channel, `colored`
+  // the direct light's colour (the paper's light model).
+  void allocate(std::uint64_t texels, bool diffuse, bool colored = false);
+  // Starts a sweep of a `size` x `rows` grid (a light's projection, within
+  // the allocation) from `initial` (see initial_cache_state).
+  void reset(const std::vector<vec2>& initial, int size, int rows);
   IlluminationCacheView view(float max_depth);
   // Folds the writes of the last block into the state and clears them. For
   // each written texel advance(texel, stored, written) gives its new light,
@@ -200,11 +203,11 @@ class IlluminationCache {
   static constexpr int kResolveChunk = 64;
   template <class AdvanceChunk> void resolve_chunks(const AdvanceChunk& advance);
 
-  int size() const { return size_; }
+  std::uint64_t capacity() const { return state_.size(); }
   std::uint64_t bytes() const;
 
  private:
-  int size_ = 0;
+  int size_ = 0, rows_ = 0;
   float max_depth_ = 1.0f;
   std::vector<vec2> state_;
   std::vector<vec4> diffuse_;

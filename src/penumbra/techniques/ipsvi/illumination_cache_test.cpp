@@ -58,8 +58,8 @@ TEST(IlluminationCache, InitialStateStartsEveryLightRayAtTheEarliestBoxEntryArou
 TEST(IlluminationCache, WritesAreWeightedMeansInAnyOrderAndOnlyAdvance) {
   auto run = [](bool reversed) {
     IlluminationCache cache;
-    cache.allocate(4, true);
-    cache.reset(std::vector<vec2>(16, vec2(1.0f, 2.0f)));
+    cache.allocate(16, true);
+    cache.reset(std::vector<vec2>(16, vec2(1.0f, 2.0f)), 4, 4);
     const IlluminationCacheView v = cache.view(10.0f);
     auto a = [&] { v.write(5, 1.0f, 0.5f, 4.0f, vec3(0.8f)); };
     auto b = [&] { v.write(5, 3.0f, 0.1f, 6.0f, vec3(0.4f)); };
@@ -89,8 +89,8 @@ TEST(IlluminationCache, WritesAreWeightedMeansInAnyOrderAndOnlyAdvance) {
 
 TEST(IlluminationCache, ResolveAdvancesOnlyWrittenTexelsOnce) {
   IlluminationCache cache;
-  cache.allocate(4, false);
-  cache.reset(std::vector<vec2>(16, vec2(1.0f, 0.0f)));
+  cache.allocate(16, false);
+  cache.reset(std::vector<vec2>(16, vec2(1.0f, 0.0f)), 4, 4);
   const IlluminationCacheView v = cache.view(10.0f);
   v.write(3, 1.0f, 0.0f, 5.0f, vec3(0.0f));
   int calls = 0;
@@ -114,8 +114,8 @@ TEST(IlluminationCache, ResolveAdvancesOnlyWrittenTexelsOnce) {
 
 TEST(IlluminationCache, ReadsAreBilinearAndUnlitOutside) {
   IlluminationCache cache;
-  cache.allocate(2, true);
-  cache.reset({vec2(1.0f, 0.0f), vec2(0.0f, 4.0f), vec2(1.0f, 0.0f), vec2(0.0f, 4.0f)});
+  cache.allocate(4, true);
+  cache.reset({vec2(1.0f, 0.0f), vec2(0.0f, 4.0f), vec2(1.0f, 0.0f), vec2(0.0f, 4.0f)}, 2, 2);
   const IlluminationCacheView v = cache.view(10.0f);
   const CachedLight mid = v.read(vec2(1.0f, 1.0f), false);
   EXPECT_NEAR(mid.direct, 0.5f, 1e-6f);
@@ -134,8 +134,8 @@ TEST(IlluminationCache, ReadsAreBilinearAndUnlitOutside) {
 // and its weights add to 1), so it spreads light without moving or losing it.
 TEST(IlluminationCache, DiffuseFilterKeepsConstantsAndRamps) {
   IlluminationCache cache;
-  cache.allocate(16, true);
-  cache.reset(std::vector<vec2>(256, vec2(1.0f, 0.0f)));
+  cache.allocate(256, true);
+  cache.reset(std::vector<vec2>(256, vec2(1.0f, 0.0f)), 16, 16);
   IlluminationCacheView v = cache.view(10.0f);
   std::vector<vec4> ramp(256);
   for (int i = 0; i < 256; ++i) ramp[std::size_t(i)] = vec4(0.02f * float(i % 16), 0.5f, 0.01f * float(i / 16), 1.0f);

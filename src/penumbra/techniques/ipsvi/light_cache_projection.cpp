@@ -57,7 +57,7 @@ LightCacheProjection make_light_cache_projection(const Light& light, const Box3&
 }
 
 LightCacheProjection fit_light_cache_projection(const Light& light, const Box3& box, const LightCacheRegion& region,
-                                                int size, int max_size) {
+                                                int size, int max_size, bool trim) {
   if (size < 0) throw InvalidArgument("cache_size", "must be at least 1");
   LightCacheProjection p;
   const auto corners = box_corners(box);
@@ -101,6 +101,7 @@ LightCacheProjection fit_light_cache_projection(const Light& light, const Box3& 
       const float pixel = glm::max(region.pixel, 1e-6f);
       p.size = glm::clamp(int(std::ceil(reach * 3.5449077f / pixel)), 16, cap);
     }
+    p.rows = p.size;
     return p;
   }
 
@@ -164,13 +165,26 @@ LightCacheProjection fit_light_cache_projection(const Light& light, const Box3& 
     const float wanted = glm::max(glm::min(texels.x, texels.y), glm::max(texels.x, texels.y) / aspect);
     n = glm::clamp(int(std::ceil(glm::min(wanted, 1e7f))), 16, cap);
   }
-  p.size = n;
   vec2 t = extent / float(glm::max(n - 1, 1));
-  if (t.x > aspect * t.y) t.y = t.x / aspect;
-  if (t.y > aspect * t.x) t.x = t.y / aspect;
+  glm::ivec2 counts(n);
+  // Texels no more than `aspect` times longer than wide: across a long
+  // rectangle they are wider than its extent over n needs, and with `trim`
+  // fewer of them cover it (one more than the extent's texels, for the
+  // centre's rounding to whole texels below).
+  const int fewest = glm::min(n, 16);
+  if (t.x > aspect * t.y) {
+    t.y = t.x / aspect;
+    if (trim) counts.y = glm::clamp(int(std::ceil(extent.y / t.y)) + 1, fewest, n);
+  }
+  if (t.y > aspect * t.x) {
+    t.x = t.y / aspect;
+    if (trim) counts.x = glm::clamp(int(std::ceil(extent.x / t.x)) + 1, fewest, n);
+  }
+  p.size = counts.x;
+  p.rows = counts.y;
   t = vec2(snap_up(t.x), snap_up(t.y));
   const vec2 centre = glm::round(0.5f * (r.lo + r.hi) / t) * t;
-  const vec2 lower = centre - 0.5f * float(n) * t;
+  const vec2 lower = centre - 0.5f * vec2(counts) * t;
   p.scale = vec2(1.0f) / t;
   if (ortho) {
     p.origin = lower.x * p.side_u + lower.y * p.side_v + lowest * p.axis;

@@ -16,9 +16,10 @@
 // The rectangle (orthographic and perspective) is the paper's "light frustum
 // adaptation" (section 5.2): make_light_cache_projection fits it to the whole
 // box, fit_light_cache_projection (cache_fit.h) to what the camera sees. Its
-// size x size texels may be longer along side_u than along side_v (scale.x <=
-// scale.y): the fitted rectangle is long where the camera frustum runs deep
-// into the volume, and there the image resolves little (see cache_fit.h).
+// size x rows texels may be longer along one side than along the other: the
+// fitted rectangle is long where the camera frustum runs deep into the
+// volume, and there the image resolves little (see cache_fit.h); across it
+// the grid has only the texels the rectangle needs.
 #include "penumbra/base/math.h"
 #include "penumbra/base/ray.h"
 #include "penumbra/scene/light.h"
@@ -31,7 +32,8 @@ enum class LightMapping : std::uint8_t { Orthographic, Perspective, Octahedral }
 
 struct LightCacheProjection {
   LightMapping mapping = LightMapping::Orthographic;
-  int size = 1;
+  int size = 1;  // texels along side_u
+  int rows = 1;  // texels along side_v (size for the octahedral map)
   vec3 origin{0.0f};  // orthographic: corner of the projection square at depth 0; else the light position
   vec3 axis{0.0f, 0.0f, 1.0f};  // orthographic: the light's travel direction; perspective: frustum axis
   vec3 side_u{1.0f, 0.0f, 0.0f};
@@ -125,10 +127,13 @@ struct LightCacheRegion {
 
 // The projection of `light` fitted to `region`'s light-space bounding
 // rectangle (within the box's): `size` texels per side, or with 0 texels a
-// pixel wide across the rectangle's short side, at most `max_size`. The
+// pixel wide across the rectangle's short side, at most `max_size`. With
+// `trim`, where texels longer than max_aspect would be needed along one side,
+// the other side gets only the texels (at least 16) it needs to cover the
+// rectangle at a texel max_aspect times shorter, instead of `size`. The
 // mapping, the axis and the depths depend only on the light and the box.
 LightCacheProjection fit_light_cache_projection(const Light& light, const Box3& box, const LightCacheRegion& region,
-                                                int size, int max_size);
+                                                int size, int max_size, bool trim = false);
 
 // Fits the projection of `light` to the whole `box` with `size` square
 // texels per side. Environment lights have no direction; callers skip them.

@@ -15,8 +15,12 @@
 namespace penumbra {
 namespace {
 
+// The texels along a fit's longer side, the size automatic fits of several
+// lights agree on (fit_ipsvi_caches).
+int texels_per_side(const LightCacheProjection& p) { return std::max(p.size, p.rows); }
+
 bool same_projection(const LightCacheProjection& a, const LightCacheProjection& b) {
-  return a.mapping == b.mapping && a.size == b.size && a.origin == b.origin && a.axis == b.axis &&
+  return a.mapping == b.mapping && a.size == b.size && a.rows == b.rows && a.origin == b.origin && a.axis == b.axis &&
          a.side_u == b.side_u && a.side_v == b.side_v && a.scale == b.scale && a.lower == b.lower &&
          a.max_depth == b.max_depth;
 }
@@ -67,14 +71,16 @@ std::vector<LightCacheProjection> fit_ipsvi_caches(const Scene& scene, const Ips
   std::vector<LightCacheProjection> out;
   for (const Light& light : scene.lights()) {
     if (light.type == LightType::Environment) continue;  // not a single-scattering light (light.h)
-    out.push_back(fit_light_cache_projection(light, box, region, 0, cap));
+    out.push_back(fit_light_cache_projection(light, box, region, 0, cap, true));
     if (out.back().mapping == LightMapping::Octahedral) out.back() = fit_light_cache_projection(light, box, region, 0, 2 * cap);
-    if (settings.cache_size == 0) size = std::max(size, out.back().size);
+    if (settings.cache_size == 0) size = std::max(size, texels_per_side(out.back()));
   }
   for (std::size_t i = 0, k = 0; i < scene.lights().size(); ++i) {
     const Light& light = scene.lights()[i];
     if (light.type == LightType::Environment) continue;
-    if (out[k].size != size) out[k] = fit_light_cache_projection(light, box, region, size, size);
+    if (texels_per_side(out[k]) != size || (settings.cache_size > 0 && out[k].rows != size)) {
+      out[k] = fit_light_cache_projection(light, box, region, size, size, settings.cache_size == 0);
+    }
     ++k;
   }
   return out;
@@ -82,14 +88,18 @@ std::vector<LightCacheProjection> fit_ipsvi_caches(const Scene& scene, const Ips
 
 int ipsvi_cache_size(const Scene& scene, const IpsviSettings& settings) {
   const std::vector<LightCacheProjection> fits = fit_ipsvi_caches(scene, settings);
-  return fits.empty() ? 16 : fits.front().size;
+  return fits.empty() ? 16 : texels_per_side(fits.front());
 }
 
 void IpsviRenderer::prepare(const Scene& scene, const IpsviSettings& settings) {
   resources_.update(scene, scene.material().shading == Shading::Phong);
   const SceneVersions& v = scene.versions();
   std::vector<LightCacheProjection> fits = fit_ipsvi_caches(scene, settings);
-  const int cache_size = fits.empty() ? 16 : fits.front().size;
+  // One cache, sized for the largest of the lights' grids.
+  std::uint64_t cache_texels = 16 * 16;
+  for (const LightCacheProjection& p : fits) {
+    cache_texels = std::max(cache_texels, std::uint64_t(p.size) * std::uint64_t(p.rows));
+  }
   const bool channels_changed = (settings.albedo > 0.0f) != (settings_.albedo > 0.0f) ||
                                 settings.light_model != settings_.light_model;
   const bool stale = !built_ || v.lights != lights_version_ || v.geometry != geometry_version_ ||
@@ -102,8 +112,7 @@ void IpsviRenderer::prepare(const Scene& scene, const IpsviSettings& settings) {
   // the projections and the caches' starting states, O(texels) ray-box tests.
   if (stale) lights_.clear();
   const Box3 box = scene.volume().world_box();
-  check_memory_budget("ipsvi initial cache", checked_product({std::uint64_t(cache_size), std::uint64_t(cache_size),
-                                                              sizeof(vec2), std::uint64_t(fits.size())}));
+  check_memory_budget("ipsvi initial cache", checked_product({cache_texels, sizeof(vec2), std::uint64_t(fits.size())}));
   std::size_t i = 0;
   lights_.resize(fits.size());
   for (const Light& light : scene.lights()) {
@@ -114,8 +123,8 @@ void IpsviRenderer::prepare(const Scene& scene, const IpsviSettings& settings) {
     lc.initial = initial_cache_state(lc.projection, box, scene.clip_planes());
     ++i;
   }
-  if (cache_size != cache_.size() || stale) {
-    cache_.allocate(cache_size, settings.albedo > 0.0f, settings.light_model == IpsviLightModel::Paper);
+  if (cache_texels != cache_.capacity() || stale) {
+    cache_.allocate(cache_texels, settings.albedo > 0.0f, settings.light_model == IpsviLightModel::Paper);
   }
   lights_version_ = v.lights;
   geometry_version_ = v.geometry;
@@ -285,7 +294,7 @@ void IpsviRenderer::render(const Scene& scene, Image& image, RenderStats* stats)
         write_samples.fetch_add(samples, std::memory_order_relaxed);
       };
       for (const SweepZone& zone : plan.zones) {
-        cache_.reset(lc.initial);
+        cache_.reset(lc.initial, lc.projection.size, lc.projection.rows);
         kernel.cache = cache_.view(lc.projection.max_depth);
         const int other = 1 - zone.axis;
         const std::size_t line_count = zone.lines.size();
