@@ -19,7 +19,9 @@
 // and as long as the frustum runs deep into the box; texels a pixel square
 // would need the strip's length in pixels along it. The long texels cost
 // detail on surfaces seen at a slant, where the shadow varies along the view:
-// a trade of memory against error measured in docs/ipsvi.md.
+// a trade of memory against error measured in docs/ipsvi.md. Across a strip
+// longer than that, the automatic grid has only the rows that cover it
+// (fit_light_cache_projection's `trim`).
 #include "penumbra/base/math.h"
 #include "penumbra/scene/camera.h"
 #include "penumbra/scene/plane.h"
