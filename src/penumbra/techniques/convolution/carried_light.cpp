@@ -2,6 +2,7 @@
 
 #include "penumbra/base/parallel.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <vector>
@@ -73,6 +74,7 @@ void MediumMask::resize(int frame_width, int frame_height) {
   height_ = frame_height;
   any_.assign(std::size_t(frame_width) * std::size_t(frame_height), 0);
   mask_.assign(std::size_t(frame_width + 1) * std::size_t(frame_height + 1), 0);
+  any_set_ = false;
 }
 
 void MediumMask::build() {
@@ -88,6 +90,7 @@ void MediumMask::build() {
       m[w] = r0[w - 1] | r1[w - 1];
     }
   });
+  any_set_ = std::any_of(any_.begin(), any_.end(), [](std::uint8_t f) { return f != 0; });
 }
 
 void CarriedLights::start(int frame_width, int frame_height, int channels, float min_scale, int min_age,
@@ -132,7 +135,7 @@ void CarriedLights::advance(int l, const float* out, const MediumMask& medium, c
   const std::size_t plane = std::size_t(g.width) * std::size_t(g.height);
   const std::size_t frame_plane = std::size_t(frame_width_) * std::size_t(frame_height_);
   const float step = float(++steps_[std::size_t(l)]);
-  parallel_for(0, g.height, [&](std::int64_t first, std::int64_t last) {
+  if (medium.any()) parallel_for(0, g.height, [&](std::int64_t first, std::int64_t last) {
     for (std::int64_t y = first; y < last; ++y) {
       for (int x = 0; x < g.width; ++x) {
         const vec2 p = g.position(x, int(y));
@@ -163,19 +166,9 @@ CarriedRowRead carried_row_packets() {
 
 }  // namespace
 
-SimdTarget CarriedLights::target() const {
-  bool any = false;
-  for (const char c : carried_) any = any || c;
-  return any && carried_row_packets() && channels_ <= CarriedReadView::kMaxChannels ? active_simd_target()
-                                                                                   : SimdTarget::Scalar;
-}
-
-std::uint64_t CarriedLights::propagate(int l, const SlabFrame& frame, const SlabKernel& kernel, const float* out,
-                                       float* incoming, const MediumMask& medium, const SlabMapping& mapping,
-                                       vec2 w) const {
+CarriedReadView CarriedLights::read_view(int l, const MediumMask& medium, const SlabMapping& mapping, vec2 w) const {
   const CarriedGrid& g = grids_[std::size_t(l)];
   const std::size_t plane = std::size_t(g.width) * std::size_t(g.height);
-  const std::size_t frame_plane = std::size_t(frame_width_) * std::size_t(frame_height_);
   CarriedReadView r;
   r.medium = medium.view();
   r.grid = g;
@@ -188,6 +181,31 @@ std::uint64_t CarriedLights::propagate(int l, const SlabFrame& frame, const Slab
   r.map_center = mapping.center;
   r.map_scale = mapping.scale;
   r.w = w;
+  return r;
+}
+
+vec3 CarriedLights::read_clear(int l, float px, float py, const MediumMask& medium, const SlabMapping& mapping,
+                               vec2 w) const {
+  CarriedReadView r = read_view(l, medium, mapping, w);
+  r.clear_since = kInfinity;
+  float out[CarriedReadView::kMaxChannels] = {1.0f, 1.0f, 1.0f};
+  read_carried_lanes<ScalarLanes>(r, px, py, true, out);
+  return channels_ == 1 ? vec3(out[0]) : vec3(out[0], out[1], out[2]);
+}
+
+SimdTarget CarriedLights::target() const {
+  bool any = false;
+  for (const char c : carried_) any = any || c;
+  return any && carried_row_packets() && channels_ <= CarriedReadView::kMaxChannels ? active_simd_target()
+                                                                                   : SimdTarget::Scalar;
+}
+
+std::uint64_t CarriedLights::propagate(int l, const SlabFrame& frame, const SlabKernel& kernel, const float* out,
+                                       float* incoming, const MediumMask& medium, const SlabMapping& mapping,
+                                       vec2 w) const {
+  const CarriedReadView r = read_view(l, medium, mapping, w);
+  const std::size_t plane = r.plane;
+  const std::size_t frame_plane = std::size_t(frame_width_) * std::size_t(frame_height_);
   // Packets need 32-bit gather offsets into the grid.
   const CarriedRowRead packets =
       plane < (std::size_t(1) << 31) && channels_ <= CarriedReadView::kMaxChannels ? carried_row_packets() : nullptr;

@@ -116,6 +116,8 @@ class MediumMask {
   void resize(int frame_width, int frame_height);  // all clear
   std::uint8_t* flags() { return any_.data(); }     // per pixel: 1 where the slab has a medium
   void build();
+  // Whether the last build() found any flag set (else touches() is false everywhere).
+  bool any() const { return any_set_; }
   // p in frame pixel coordinates, pixel centres at +0.5.
   bool touches(vec2 p) const { return view().touches<ScalarLanes>(p.x, p.y); }
   MediumMaskView view() const { return MediumMaskView{mask_.data(), width_, height_}; }
@@ -124,6 +126,7 @@ class MediumMask {
   int width_ = 0, height_ = 0;
   std::vector<std::uint8_t> any_;   // the flags
   std::vector<std::uint8_t> mask_;  // (width + 1) x (height + 1): entry (x0 + 1, y0 + 1) for pixels x0..x0+1, y0..y0+1
+  bool any_set_ = false;
 };
 
 // What propagate reads for one light, as a plain view for the lane-generic
@@ -244,6 +247,12 @@ class CarriedLights {
   // that took the carried light.
   std::uint64_t propagate(int l, const SlabFrame& frame, const SlabKernel& kernel, const float* out, float* incoming,
                           const MediumMask& medium, const SlabMapping& mapping, vec2 w) const;
+  // The carried light entering slab k at frame pixel (x, y) (after
+  // advance(l, ...) for slab k), for slabs past every medium: there the mask
+  // is empty and every texel has been clear for at least min_age slabs, so
+  // propagate would give every pixel this read. The caller ensures that
+  // (SlabRenderer's empty tail); the texels' age is not checked here.
+  vec3 read_clear(int l, float px, float py, const MediumMask& medium, const SlabMapping& mapping, vec2 w) const;
 
   std::uint64_t bytes() const { return texels_.size() * sizeof(float); }
   // What propagate reads the carried light as: the active SIMD target when
@@ -255,6 +264,7 @@ class CarriedLights {
   // `channels_` planes of light, then one of the step (advance) at which each
   // texel last touched a medium (re-bases copy it with the light).
   float* texels(int l, int half);
+  CarriedReadView read_view(int l, const MediumMask& medium, const SlabMapping& mapping, vec2 w) const;
 
   int frame_width_ = 0, frame_height_ = 0, channels_ = 1, min_age_ = 1;
   float min_scale_ = 1.0f;

@@ -1,6 +1,7 @@
 #include "penumbra/techniques/convolution/convolution.h"
 
 #include "penumbra/techniques/convolution/gaussian_light.h"
+#include "penumbra/techniques/convolution/slab_renderer.h"
 
 #include "penumbra/analysis/image_metrics.h"
 #include "penumbra/base/error.h"
@@ -189,6 +190,51 @@ TEST(Convolution, HalfShadowStaysAsThePenumbraWidens) {
   // variance 0.02 is only as wide as that floor (6.7 px), so the wide light
   // has 0.08.
   EXPECT_GT(width[1], width[0] + 1.5f);
+}
+
+// Past the volume box, the slabs down to a floor far below it only light
+// the floor's hits from the carried grids (the empty tail, slab_renderer.cpp):
+// the image is the full per-pixel pass's, with perspective and orthographic
+// cameras and two lights, and the tail does take most of those slabs.
+TEST(Convolution, EmptyTailMatchesTheFullPass) {
+  for (int variant = 0; variant < 3; ++variant) {
+    Scene scene = edge_scene(64);
+    scene.set_planes({Plane{vec3(0.0f, 0.0f, -60.0f), vec3(0.0f, 0.0f, 1.0f), vec3(0.8f)}});
+    if (variant == 1) {
+      Camera cam = scene.camera();
+      cam.projection = Projection::Orthographic;
+      cam.ortho_height = 70.0f;
+      scene.set_camera(cam);
+    }
+    if (variant == 2) {
+      Light b = scene.lights()[0];
+      b.direction = glm::normalize(vec3(-0.2f, 0.45f, -1.0f));
+      b.color = vec3(0.3f, 0.5f, 1.0f);
+      scene.set_lights({scene.lights()[0], b});
+    }
+    Image image[2];
+    int tail[2], slabs = 0;
+    for (const bool empty_tail : {true, false}) {
+      SlabSettings settings;
+      settings.empty_tail = empty_tail;
+      SlabRenderer renderer;
+      renderer.prepare(scene, settings);
+      renderer.render(scene, image[empty_tail ? 0 : 1]);
+      tail[empty_tail ? 0 : 1] = renderer.last_tail_slabs();
+      slabs = renderer.last_slab_count();
+    }
+    float worst = 0.0f;
+    for (int y = 0; y < image[0].height(); ++y) {
+      for (int x = 0; x < image[0].width(); ++x) {
+        const vec4 d = glm::abs(image[0].at(x, y) - image[1].at(x, y));
+        worst = std::max({worst, d.x, d.y, d.z, d.w});
+      }
+    }
+    std::printf("variant %d: %d slabs, %d in the tail, largest difference %.2g\n", variant, slabs, tail[0], worst);
+    EXPECT_GT(tail[0], slabs / 3) << variant;
+    EXPECT_EQ(tail[1], 0) << variant;
+    EXPECT_LE(worst, 1e-6f) << variant;
+  }
 }
 
 // Several lights: each has its own buffers and the shadows add up, so the

@@ -132,6 +132,7 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
   const float voxel = view.volume.min_spacing();
   float z_front = box_depth(box, cam, false);
   float z_back = box_depth(box, cam, true);
+  const float z_box_back = z_back;  // no volume sample lies beyond
   if (!cam.orthographic) z_front = glm::max(z_front, 1e-4f);
   const float box_extent = glm::max(z_back - z_front, 0.0f);
   const float e = settings_.slab_distance_voxels > 0.0f ? settings_.slab_distance_voxels * voxel
@@ -307,6 +308,71 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
     p.done = true;
   };
 
+  // The empty tail. Slabs behind the volume box (with no meshes) hold no
+  // medium. Once every carried texel has been clear of one for min_age
+  // slabs, propagate gives every pixel the carried light and only the plane
+  // hits read it. So, from there to the last slab but one, a slab steps the
+  // carried grids and lights the pixels whose plane it hits, one read each,
+  // instead of passing over every pixel (a floor far below the volume: about
+  // half the slabs, docs/PERFORMANCE.md). With a soft light (re-sampled
+  // every slab) there is none.
+  int tail_from = slabs;
+  if (settings_.empty_tail && light_count > 0 && !has_meshes &&
+      std::count(carried.begin(), carried.end(), 1) == light_count) {
+    const int first_empty = int(std::ceil(glm::max(z_box_back - z_front, 0.0f) / e)) + 1;
+    tail_from = glm::min(slabs, first_empty + clear_slabs + 2);
+  }
+  // The tail's plane hits by slab (counting sort; filled when the tail starts).
+  std::vector<std::uint32_t> tail_start, tail_pixels;
+  auto slab_far_edge = [&](int k) { return (z_front + (float(k) + 0.5f) * e) + 0.5f * e; };  // the loop's z1
+  auto start_tail = [&]() {
+    const int count = slabs - tail_from;
+    tail_start.assign(std::size_t(count) + 1, 0u);
+    std::vector<int> slab_of(pixels, -1);
+    for (std::size_t i = 0; i < pixels; ++i) {
+      const PixelState& p = px[i];
+      if (p.done || p.plane < 0) continue;
+      int k = glm::clamp(int(std::floor((p.z_plane - z_front) / e)), tail_from, slabs);
+      while (k > tail_from && p.z_plane < slab_far_edge(k - 1)) --k;
+      while (k < slabs && !(p.z_plane < slab_far_edge(k))) ++k;
+      if (k >= slabs - 1) continue;  // the last slab and beyond take the full pass
+      slab_of[i] = k - tail_from;
+      ++tail_start[std::size_t(k - tail_from) + 1];
+    }
+    for (int k = 0; k < count; ++k) tail_start[std::size_t(k) + 1] += tail_start[std::size_t(k)];
+    tail_pixels.resize(tail_start.back());
+    std::vector<std::uint32_t> fill(tail_start.begin(), tail_start.end() - 1);
+    for (std::size_t i = 0; i < pixels; ++i) {
+      if (slab_of[i] >= 0) tail_pixels[fill[std::size_t(slab_of[i])]++] = std::uint32_t(i);
+    }
+  };
+  auto tail_slab = [&](int k, float z) {
+    SlabMapping maps[kMaxLights];
+    vec2 offsets[kMaxLights];
+    for (int l = 0; l < light_count; ++l) {
+      const SlabKernel kernel = kernels[std::size_t(l)].for_slab(k);
+      maps[l] = slab_mapping(frame, z);
+      const vec2 o = kernel.offset(0, 1.0f, 0.0f);
+      offsets[l] = maps[l].pixels_per_unit * vec2(-o.x, o.y);
+      carried_.advance(l, buffer(l, current), medium, maps[l], offsets[l]);  // the mask is empty: the grid moves
+    }
+    const std::size_t begin = tail_start[std::size_t(k - tail_from)], end = tail_start[std::size_t(k - tail_from) + 1];
+    parallel_for(std::int64_t(begin), std::int64_t(end), [&](std::int64_t first, std::int64_t last) {
+      vec3 vis[kMaxSceneLights];
+      for (int i = 0; i < kMaxSceneLights; ++i) vis[i] = vec3(1.0f);
+      for (std::int64_t j = first; j < last; ++j) {
+        const std::size_t i = tail_pixels[std::size_t(j)];
+        const int x = int(i % std::size_t(width)), y = int(i / std::size_t(width));
+        for (std::size_t s = 0; s < slot_of.size(); ++s) {
+          const int l = slot_of[s];
+          if (l >= 0) vis[s] = carried_.read_clear(l, float(x) + 0.5f, float(y) + 0.5f, medium, maps[l], offsets[l]);
+        }
+        shade_plane(px[i], x, y, vis);
+      }
+    }, 64);
+  };
+  last_tail_slabs_ = glm::max(slabs - 1 - tail_from, 0);
+
   with_sampler(view.volume, [&](const auto& sampler) {
     using Sampler = std::decay_t<decltype(sampler)>;
     auto tf_lookup = [&](const TransferFunctionView& tf, float value) {
@@ -315,6 +381,11 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
     for (int k = 0; k < slabs; ++k) {
       const float z = z_front + (float(k) + 0.5f) * e;
       const float z0 = z - 0.5f * e, z1 = z + 0.5f * e;
+      if (k >= tail_from && k < slabs - 1) {
+        if (k == tail_from) start_tail();
+        tail_slab(k, z);  // the light buffers are left as they were: only the last slab reads them again
+        continue;
+      }
       const int next = 1 - current;
       if (any_carried && k > 0) medium.build();
       for (int l = 0; l < light_count; ++l) {

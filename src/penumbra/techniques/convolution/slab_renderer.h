@@ -60,6 +60,7 @@ struct SlabSettings {
   bool guard_band = true;  // light buffers over a band around the image (slab_renderer.cpp)
   bool jitter = false;     // per-pixel sample offset within each slab (render.jitter, or the technique's knob)
   bool carried_light = true;  // zero-variance lights also carried along their rays across empty space
+  bool empty_tail = true;  // past every medium, slabs read the carried light only where a plane is hit (tests: false)
 };
 
 class SlabRenderer {
@@ -68,6 +69,9 @@ class SlabRenderer {
   void render(const Scene& scene, Image& image, RenderStats* stats = nullptr);
   std::uint64_t aux_bytes() const;
   int last_slab_count() const { return last_slabs_; }
+  // Slabs of the last frame that only stepped the carried grids and lit the
+  // plane hits in them (the empty tail, slab_renderer.cpp).
+  int last_tail_slabs() const { return last_tail_slabs_; }
   int rebuilds() const { return meshes_.builds(); }
   static constexpr int kAutomaticSlabs = 4096;  // the most slabs an unset slab_distance gives
 
@@ -80,6 +84,7 @@ class SlabRenderer {
   CarriedLights carried_;  // zero-variance lights' grids (carried_light.h)
   std::vector<float> buffers_;  // 2 per light, ping-pong: the light's transmittance, grey or per channel (DESIGN-NOTES)
   int last_slabs_ = 0;
+  int last_tail_slabs_ = 0;
 };
 
 }  // namespace penumbra
