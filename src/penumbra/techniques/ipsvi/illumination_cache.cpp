@@ -52,11 +52,11 @@ std::vector<vec2> initial_cache_state(const LightCacheProjection& projection, co
 }
 
 void IlluminationCache::allocate(std::uint64_t texels, bool diffuse, bool colored) {
-  const int stride = colored ? IlluminationCacheView::kColorSums : IlluminationCacheView::kSums;
+  const int stride = IlluminationCacheView::sums_per_texel(diffuse, colored);
   const std::uint64_t per_texel = sizeof(vec2) + (diffuse ? sizeof(vec4) : 0) +
                                   (colored ? sizeof(vec4) + sizeof(vec3) : 0) +
                                   std::uint64_t(stride) * sizeof(std::uint64_t) + sizeof(std::uint32_t) +
-                                  sizeof(Staged);
+                                  sizeof(vec2) + (diffuse ? sizeof(vec3) : 0);
   check_memory_budget("ipsvi illumination cache", checked_product({texels, per_texel}));
   size_ = rows_ = 0;
   state_.assign(texels, vec2(1.0f, 0.0f));
@@ -76,6 +76,8 @@ void IlluminationCache::allocate(std::uint64_t texels, bool diffuse, bool colore
   touched_.assign(texels, 0u);
   touched_count_ = 0;
   staged_.resize(texels);
+  staged_diffuse_.resize(diffuse ? texels : 0);
+  staged_diffuse_.shrink_to_fit();
   staged_color_.resize(colored ? texels : 0);
   staged_color_.shrink_to_fit();
 }
@@ -109,7 +111,7 @@ IlluminationCacheView IlluminationCache::view(float max_depth) {
 std::uint64_t IlluminationCache::bytes() const {
   return state_.size() * sizeof(vec2) + (diffuse_.size() + color_.size()) * sizeof(vec4) +
          sums_.size() * sizeof(std::uint64_t) +
-         touched_.size() * sizeof(std::uint32_t) + staged_.size() * sizeof(Staged) +
+         touched_.size() * sizeof(std::uint32_t) + staged_.size() * sizeof(vec2) + staged_diffuse_.size() * sizeof(vec3) +
          staged_color_.size() * sizeof(vec3);
 }
 

@@ -33,8 +33,12 @@ struct CachedLight {
 };
 
 struct IlluminationCacheView {
-  static constexpr int kSums = 6;  // weight, direct, depth, diffuse rgb
-  static constexpr int kColorSums = 9;  // the same and the direct light's rgb (paper's light model)
+  // Sums per texel: weight, direct, depth, then the diffuse rgb with the
+  // diffuse channel and the direct light's rgb with colour (the paper's light
+  // model), in that order.
+  PENUMBRA_HD static constexpr int sums_per_texel(bool with_diffuse, bool with_color) {
+    return 3 + (with_diffuse ? 3 : 0) + (with_color ? 3 : 0);
+  }
   static constexpr float kValueScale = 16777216.0f;  // 2^24: fixed-point unit of a value in [0, 1]
   static constexpr float kWeightScale = 65536.0f;    // 2^16
 
@@ -43,7 +47,7 @@ struct IlluminationCacheView {
   const vec2* state = nullptr;    // per texel: (direct transmittance, depth)
   const vec4* diffuse = nullptr;  // per texel: diffuse transmittance (rgb); null without the diffuse part
   const vec4* color = nullptr;    // per texel: the direct light's rgb; null but with the paper's light model
-  std::uint64_t* sums = nullptr;  // kSums (kColorSums with colour) per texel: the writes of the current block
+  std::uint64_t* sums = nullptr;  // sums_per_texel per texel: the writes of the current block
   std::uint32_t* touched = nullptr;
   std::uint32_t* touched_count = nullptr;
   float max_depth = 1.0f;
@@ -116,7 +120,7 @@ struct IlluminationCacheView {
                          vec3 color_light = vec3(1.0f)) const {
     if (!(weight > 0.0f) || !(depth > state[texel].y)) return;
     const std::uint64_t w = std::uint64_t(weight * kWeightScale) + 1u;
-    std::uint64_t* s = sums + std::int64_t(texel) * (color ? kColorSums : kSums);
+    std::uint64_t* s = sums + std::int64_t(texel) * sums_per_texel(diffuse != nullptr, color != nullptr);
     if (fetch_add(s[0], w) == 0u) touched[fetch_add32(*touched_count, 1u)] = std::uint32_t(texel);
     fetch_add(s[1], w * quantize(direct));
     fetch_add(s[2], w * quantize(depth / max_depth));
@@ -126,9 +130,10 @@ struct IlluminationCacheView {
       fetch_add(s[5], w * quantize(diffuse_light.b));
     }
     if (color) {
-      fetch_add(s[6], w * quantize(color_light.r));
-      fetch_add(s[7], w * quantize(color_light.g));
-      fetch_add(s[8], w * quantize(color_light.b));
+      std::uint64_t* c = s + (diffuse ? 6 : 3);
+      fetch_add(c[0], w * quantize(color_light.r));
+      fetch_add(c[1], w * quantize(color_light.g));
+      fetch_add(c[2], w * quantize(color_light.b));
     }
   }
 
@@ -215,12 +220,9 @@ class IlluminationCache {
   std::vector<std::uint64_t> sums_;
   std::vector<std::uint32_t> touched_;
   std::uint32_t touched_count_ = 0;
-  struct Staged {
-    float direct, depth;
-    vec3 diffuse;
-  };
-  std::vector<Staged> staged_;       // resolve(): the new light of each touched texel
-  std::vector<vec3> staged_color_;  // and its colour (paper's light model)
+  std::vector<vec2> staged_;          // resolve(): the new light (direct, depth) of each touched texel
+  std::vector<vec3> staged_diffuse_;  // its diffuse light (with the diffuse channel)
+  std::vector<vec3> staged_color_;    // and its colour (paper's light model)
 };
 
 template <class Advance> void IlluminationCache::resolve(const Advance& advance) {
@@ -234,7 +236,8 @@ template <class AdvanceChunk> void IlluminationCache::resolve_chunks(const Advan
   const std::int64_t count = touched_count_;
   const bool diffuse = !diffuse_.empty();
   const bool colored = !color_.empty();
-  const int stride = colored ? IlluminationCacheView::kColorSums : IlluminationCacheView::kSums;
+  const int stride = IlluminationCacheView::sums_per_texel(diffuse, colored);
+  const int color_sums = diffuse ? 6 : 3;
   parallel_for(
       0, count,
       [&](std::int64_t first, std::int64_t last) {
@@ -251,7 +254,10 @@ template <class AdvanceChunk> void IlluminationCache::resolve_chunks(const Advan
                                    colored ? vec3(color_[texel]) : vec3(1.0f)};
             CachedLight mean{float(double(s[1]) / w), float(double(s[2]) / w) * max_depth_, vec3(1.0f), vec3(1.0f)};
             if (diffuse) mean.diffuse = vec3(float(double(s[3]) / w), float(double(s[4]) / w), float(double(s[5]) / w));
-            if (colored) mean.color = vec3(float(double(s[6]) / w), float(double(s[7]) / w), float(double(s[8]) / w));
+            if (colored) {
+              const std::uint64_t* c = s + color_sums;
+              mean.color = vec3(float(double(c[0]) / w), float(double(c[1]) / w), float(double(c[2]) / w));
+            }
             std::fill(s, s + stride, 0u);
             if (mean.depth > held.depth) {
               texels[n] = int(texel);
@@ -268,7 +274,8 @@ template <class AdvanceChunk> void IlluminationCache::resolve_chunks(const Advan
           for (int j = 0; j < n; ++j) out[slots[j]] = advanced[j];
           for (std::int64_t i = begin; i < end; ++i) {
             const CachedLight& c = out[i - begin];
-            staged_[std::size_t(i)] = Staged{c.direct, c.depth, c.diffuse};
+            staged_[std::size_t(i)] = vec2(c.direct, c.depth);
+            if (diffuse) staged_diffuse_[std::size_t(i)] = c.diffuse;
             if (colored) staged_color_[std::size_t(i)] = c.color;
           }
         }
@@ -279,9 +286,8 @@ template <class AdvanceChunk> void IlluminationCache::resolve_chunks(const Advan
       [&](std::int64_t first, std::int64_t last) {
         for (std::int64_t i = first; i < last; ++i) {
           const std::uint32_t texel = touched_[std::size_t(i)];
-          const Staged& c = staged_[std::size_t(i)];
-          state_[texel] = vec2(c.direct, c.depth);
-          if (diffuse) diffuse_[texel] = vec4(c.diffuse, 1.0f);
+          state_[texel] = staged_[std::size_t(i)];
+          if (diffuse) diffuse_[texel] = vec4(staged_diffuse_[std::size_t(i)], 1.0f);
           if (colored) color_[texel] = vec4(staged_color_[std::size_t(i)], 1.0f);
         }
       },
