@@ -130,7 +130,8 @@ ParameterSettings quick_params(const TechniqueInfo& info) {
 // The techniques whose render is the shared loop with a packet-capable
 // Lighting (every render_lit technique, emission-absorption and phong), and
 // occlusion-map, whose soft-shadow marches run as packets, ipsvi, whose
-// light segments do, and convolution, whose carried light is read as them.
+// light segments do, and convolution, whose carried light is read as them
+// (and a soft light's slab step, a variant below).
 const std::set<std::string> kPacketTechniques = {"emission-absorption", "phong",         "shadow-rays",
                                                  "filtered-sat",        "sat-ao",        "cone-shadows",
                                                  "ambient-scattering",  "shadow-map",    "deep-shadow-map",
@@ -161,11 +162,13 @@ double max_difference(const Image& a, const Image& b) {
 // Modes of a technique that take another packet path than its defaults:
 // occlusion-map's DVR mode lights every DVR sample as packets; ipsvi's
 // light segments carry the diffuse part's optical depth when albedo > 0 and
-// the colour they add with the paper's light model.
+// the colour they add with the paper's light model; convolution's soft light
+// steps its buffers with several taps as packets.
 const std::vector<std::pair<std::string, ParameterSettings>> kPacketVariants = {
     {"occlusion-map", {{"mode", std::string("dvr")}}},
     {"ipsvi", {{"albedo", 0.5}}},
-    {"ipsvi", {{"light_model", std::string("paper")}}}};
+    {"ipsvi", {{"light_model", std::string("paper")}}},
+    {"convolution", {{"light_sigma_x2", 0.01}, {"light_sigma_y2", 0.004}}}};
 
 TEST(PacketPath, EveryTechniqueMatchesTheScalarPath) {
   const std::vector<SimdMode> modes = packet_modes();

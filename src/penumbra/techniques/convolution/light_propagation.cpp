@@ -63,11 +63,28 @@ glm::mat2 interpolation_corrected_covariance(SlabKernelType type, int samples, v
   return kernel;
 }
 
+ConvolveRow convolve_row_function(const SlabKernel& kernel, std::size_t pixels) {
+  // Packets need 32-bit gather offsets into the buffer.
+  if (kernel.count <= 1 || kernel.rotate_per_pixel || pixels >= (std::size_t(1) << 31)) return nullptr;
+  return simd_unit_function(active_simd_target(), []<SimdTarget T>() { return &convolve_row_packets<T>; });
+}
+
 void convolve_slab(const SlabFrame& frame, const SlabKernel& kernel, const float* previous, float* incoming,
                    float depth) {
   const SlabMapping mapping = slab_mapping(frame, depth);
+  const bool rows = kernel.count > 1 && !kernel.rotate_per_pixel;
+  const ConvolveRow packets = convolve_row_function(kernel, std::size_t(frame.width) * std::size_t(frame.height));
   parallel_for(0, frame.height, [&](std::int64_t first, std::int64_t last) {
     for (std::int64_t y = first; y < last; ++y) {
+      float* row = incoming + std::size_t(frame.width) * std::size_t(y);
+      if (packets) {
+        packets(frame, mapping, kernel, previous, int(y), row);
+        continue;
+      }
+      if (rows) {
+        convolve_row<ScalarLanes>(frame, mapping, kernel, previous, int(y), row);
+        continue;
+      }
       for (int x = 0; x < frame.width; ++x) {
         incoming[x + frame.width * int(y)] = convolve_texel_mapped(frame, mapping, kernel, previous, x, int(y));
       }

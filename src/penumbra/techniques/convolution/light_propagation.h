@@ -12,6 +12,8 @@
 // Outside the image the previous buffer is clamped to its edge texels (as a
 // GPU texture with clamp-to-edge): light entering from outside the view has
 // crossed what the border pixels saw, the closest guess available.
+#include "penumbra/backends/cpu/packets.h"
+#include "penumbra/base/lanes.h"
 #include "penumbra/render/image.h"
 #include "penumbra/scene/camera.h"
 #include "penumbra/techniques/convolution/slab_kernel.h"
@@ -44,14 +46,33 @@ PENUMBRA_HD inline vec2 pixel_of(const SlabFrame& f, vec3 q) {
               (1.0f - sy / c.half_height) * 0.5f * float(f.height));
 }
 
+// Bilinear read of a buffer at pixel coordinates (px, py), clamped to the
+// edge texels, over a lane type whose lanes share the row py (a slab's row
+// maps to one row of the previous slab: slab_mapping); read_buffer is its
+// one-lane instance.
+template <class L>
+PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Float read_buffer_row(const float* buffer, int width, int height,
+                                                                    typename L::Float px, float py) {
+  using F = typename L::Float;
+  using I = typename L::Int;
+  using X = typename L::Index;
+  const F fx = px - 0.5f;
+  const float fy = py - 0.5f;
+  const F x0f = floor(fx);
+  const float y0f = glm::floor(fy);
+  const F tx = fx - x0f;
+  const float ty = fy - y0f;
+  const I x0 = to_int(x0f);
+  const int y0 = int(y0f);
+  const I xa = max(I(0), min(x0, I(width - 1))), xb = max(I(0), min(x0 + I(1), I(width - 1)));
+  const I ra(width * glm::clamp(y0, 0, height - 1)), rb(width * glm::clamp(y0 + 1, 0, height - 1));
+  const F a = gather(buffer, X(ra + xa)), b = gather(buffer, X(ra + xb));
+  const F c = gather(buffer, X(rb + xa)), d = gather(buffer, X(rb + xb));
+  return (1.0f - ty) * ((1.0f - tx) * a + tx * b) + ty * ((1.0f - tx) * c + tx * d);
+}
+
 PENUMBRA_HD inline float read_buffer(const float* buffer, int width, int height, vec2 p) {
-  const float fx = p.x - 0.5f, fy = p.y - 0.5f;
-  const float x0f = glm::floor(fx), y0f = glm::floor(fy);
-  const float tx = fx - x0f, ty = fy - y0f;
-  const int x0 = int(x0f), y0 = int(y0f);
-  auto at = [&](int x, int y) { return buffer[glm::clamp(x, 0, width - 1) + width * glm::clamp(y, 0, height - 1)]; };
-  return (1.0f - ty) * ((1.0f - tx) * at(x0, y0) + tx * at(x0 + 1, y0)) +
-         ty * ((1.0f - tx) * at(x0, y0 + 1) + tx * at(x0 + 1, y0 + 1));
+  return read_buffer_row<ScalarLanes>(buffer, width, height, p.x, p.y);
 }
 
 // A sharper read for single-tap kernels (zero-variance lights), where the
@@ -164,6 +185,49 @@ glm::mat2 interpolation_corrected_covariance(SlabKernelType type, int samples, v
                                              std::uint64_t seed, float pixels_per_unit);
 
 // The whole buffer for the slab at `depth` (parallel over rows).
+// Row y of convolve_texel_mapped for a kernel of several taps the same at
+// every pixel (no per-pixel rotation), L::kWidth texels at a time, into
+// `incoming` (the row's first texel).
+template <class L>
+PENUMBRA_HD void convolve_row(const SlabFrame& f, const SlabMapping& m, const SlabKernel& k, const float* previous,
+                              int y, float* incoming) {
+  using F = typename L::Float;
+  constexpr int W = L::kWidth;
+  static constexpr float kCentres[16] = {0.5f, 1.5f, 2.5f,  3.5f,  4.5f,  5.5f,  6.5f,  7.5f,
+                                         8.5f, 9.5f, 10.5f, 11.5f, 12.5f, 13.5f, 14.5f, 15.5f};
+  static_assert(W <= 16, "pixel centres for up to 16 lanes");
+  const float py = m.center.y + m.scale * ((float(y) + 0.5f) - m.center.y);
+  for (int x = 0; x < f.width; x += W) {
+    const F px = m.center.x + m.scale * ((F(float(x)) + L::load(kCentres)) - m.center.x);
+    F sum(0.0f);
+    for (int j = 0; j < k.count; ++j) {
+      const vec2 o = k.taps[j];
+      sum = sum + k.weights[j] * read_buffer_row<L>(previous, f.width, f.height, px + m.pixels_per_unit * (-o.x),
+                                                    py + m.pixels_per_unit * o.y);
+    }
+    if (f.width - x >= W) {
+      L::store(sum, incoming + x);
+    } else {
+      float tail[W];
+      L::store(sum, tail);
+      for (int i = 0; i < f.width - x; ++i) incoming[x + i] = tail[i];
+    }
+  }
+}
+
+// The row as packets of Target. Defined only in the SIMD units of Target
+// (convolution_packets.cpp).
+template <SimdTarget Target>
+void convolve_row_packets(const SlabFrame& f, const SlabMapping& m, const SlabKernel& k, const float* previous, int y,
+                          float* incoming);
+using ConvolveRow = void (*)(const SlabFrame&, const SlabMapping&, const SlabKernel&, const float*, int, float*);
+// The packet row convolve_slab takes for `kernel` on a frame of `pixels`
+// (several taps, no per-pixel rotation, the active target's SIMD unit), or
+// nullptr.
+ConvolveRow convolve_row_function(const SlabKernel& kernel, std::size_t pixels);
+
+// Slab k's incoming light from slab k - 1's (`previous`): kernels of several
+// taps without per-pixel rotation run as packets where the build has them.
 void convolve_slab(const SlabFrame& frame, const SlabKernel& kernel, const float* previous, float* incoming,
                    float depth);
 

@@ -597,7 +597,14 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
     stats->samples += samples.load();
     stats->rays += pixels;
     stats->passes += std::uint64_t(slabs);
-    stats->simd = carried_.target();
+    // The SIMD target of the carried light's read or of a several-tap slab step.
+    SimdTarget simd = carried_.target();
+    for (int l = 0; l < light_count && simd == SimdTarget::Scalar; ++l) {
+      if (!carried[std::size_t(l)] && convolve_row_function(kernels[std::size_t(l)].for_slab(1), pixels)) {
+        simd = active_simd_target();
+      }
+    }
+    stats->simd = simd;
   }
 }
 
