@@ -193,11 +193,12 @@ TEST(Convolution, HalfShadowStaysAsThePenumbraWidens) {
 }
 
 // Past the volume box, the slabs down to a floor far below it only light
-// the floor's hits from the carried grids (the empty tail, slab_renderer.cpp):
-// the image is the full per-pixel pass's, with perspective and orthographic
-// cameras and two lights, and the tail does take most of those slabs.
+// the floor's hits (the empty tail, slab_renderer.cpp): the image is the
+// full per-pixel pass's, with perspective and orthographic cameras, two
+// lights hard and the same two soft, and the tail does take most of
+// those slabs.
 TEST(Convolution, EmptyTailMatchesTheFullPass) {
-  for (int variant = 0; variant < 3; ++variant) {
+  for (int variant = 0; variant < 4; ++variant) {
     Scene scene = edge_scene(64);
     scene.set_planes({Plane{vec3(0.0f, 0.0f, -60.0f), vec3(0.0f, 0.0f, 1.0f), vec3(0.8f)}});
     if (variant == 1) {
@@ -206,7 +207,7 @@ TEST(Convolution, EmptyTailMatchesTheFullPass) {
       cam.ortho_height = 70.0f;
       scene.set_camera(cam);
     }
-    if (variant == 2) {
+    if (variant >= 2) {
       Light b = scene.lights()[0];
       b.direction = glm::normalize(vec3(-0.2f, 0.45f, -1.0f));
       b.color = vec3(0.3f, 0.5f, 1.0f);
@@ -217,6 +218,7 @@ TEST(Convolution, EmptyTailMatchesTheFullPass) {
     for (const bool empty_tail : {true, false}) {
       SlabSettings settings;
       settings.empty_tail = empty_tail;
+      if (variant == 3) settings.light.sigma_x2 = settings.light.sigma_y2 = 0.01f;  // every light soft
       SlabRenderer renderer;
       renderer.prepare(scene, settings);
       renderer.render(scene, image[empty_tail ? 0 : 1]);

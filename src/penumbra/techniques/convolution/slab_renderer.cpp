@@ -309,18 +309,17 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
   };
 
   // The empty tail. Slabs behind the volume box (with no meshes) hold no
-  // medium. Once every carried texel has been clear of one for min_age
-  // slabs, propagate gives every pixel the carried light and only the plane
-  // hits read it. So, from there to the last slab but one, a slab steps the
-  // carried grids and lights the pixels whose plane it hits, one read each,
-  // instead of passing over every pixel (a floor far below the volume: about
-  // half the slabs, docs/PERFORMANCE.md). With a soft light (re-sampled
-  // every slab) there is none.
+  // medium, and only the pixels whose plane a slab hits read its light. Once
+  // every carried texel has been clear of a medium for min_age slabs,
+  // propagate gives every pixel the carried light. So, from there to the
+  // last slab but one, a slab steps the carried grids (a soft light's
+  // buffers are still convolved) and lights the pixels whose plane it hits,
+  // one read each, instead of passing over every pixel (a floor far below
+  // the volume: about half the slabs, docs/PERFORMANCE.md).
   int tail_from = slabs;
-  if (settings_.empty_tail && light_count > 0 && !has_meshes &&
-      std::count(carried.begin(), carried.end(), 1) == light_count) {
+  if (settings_.empty_tail && light_count > 0 && !has_meshes) {
     const int first_empty = int(std::ceil(glm::max(z_box_back - z_front, 0.0f) / e)) + 1;
-    tail_from = glm::min(slabs, first_empty + clear_slabs + 2);
+    tail_from = glm::min(slabs, first_empty + (any_carried ? clear_slabs : 0) + 2);
   }
   // The tail's plane hits by slab (counting sort; filled when the tail starts).
   std::vector<std::uint32_t> tail_start, tail_pixels;
@@ -349,13 +348,19 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
   auto tail_slab = [&](int k, float z) {
     SlabMapping maps[kMaxLights];
     vec2 offsets[kMaxLights];
+    const int next = 1 - current;
     for (int l = 0; l < light_count; ++l) {
       const SlabKernel kernel = kernels[std::size_t(l)].for_slab(k);
+      if (!carried[std::size_t(l)]) {
+        for (int c = 0; c < channels; ++c) convolve_slab(frame, kernel, buffer(l, current, c), buffer(l, next, c), z);
+        continue;
+      }
       maps[l] = slab_mapping(frame, z);
       const vec2 o = kernel.offset(0, 1.0f, 0.0f);
       offsets[l] = maps[l].pixels_per_unit * vec2(-o.x, o.y);
       carried_.advance(l, buffer(l, current), medium, maps[l], offsets[l]);  // the mask is empty: the grid moves
     }
+    current = next;  // a carried light's buffers are left stale: only the last slab reads them, where none is needed
     const std::size_t begin = tail_start[std::size_t(k - tail_from)], end = tail_start[std::size_t(k - tail_from) + 1];
     parallel_for(std::int64_t(begin), std::int64_t(end), [&](std::int64_t first, std::int64_t last) {
       vec3 vis[kMaxSceneLights];
@@ -365,7 +370,10 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
         const int x = int(i % std::size_t(width)), y = int(i / std::size_t(width));
         for (std::size_t s = 0; s < slot_of.size(); ++s) {
           const int l = slot_of[s];
-          if (l >= 0) vis[s] = carried_.read_clear(l, float(x) + 0.5f, float(y) + 0.5f, medium, maps[l], offsets[l]);
+          if (l < 0) continue;
+          vis[s] = carried[std::size_t(l)]
+                       ? carried_.read_clear(l, float(x) + 0.5f, float(y) + 0.5f, medium, maps[l], offsets[l])
+                       : light_at(l, current, i);
         }
         shade_plane(px[i], x, y, vis);
       }
@@ -383,7 +391,7 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
       const float z0 = z - 0.5f * e, z1 = z + 0.5f * e;
       if (k >= tail_from && k < slabs - 1) {
         if (k == tail_from) start_tail();
-        tail_slab(k, z);  // the light buffers are left as they were: only the last slab reads them again
+        tail_slab(k, z);
         continue;
       }
       const int next = 1 - current;
