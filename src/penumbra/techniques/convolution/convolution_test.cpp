@@ -8,6 +8,7 @@
 #include "penumbra/io/image_io.h"
 #include "penumbra/io/scene_json.h"
 #include "penumbra/techniques/registry.h"
+#include "mesh_test_scenes.h"
 #include "test_scene.h"
 
 #include <gtest/gtest.h>
@@ -195,10 +196,10 @@ TEST(Convolution, HalfShadowStaysAsThePenumbraWidens) {
 // Past the volume box, the slabs down to a floor far below it only light
 // the floor's hits (the empty tail, slab_renderer.cpp): the image is the
 // full per-pixel pass's, with perspective and orthographic cameras, two
-// lights hard and the same two soft, and the tail does take most of
-// those slabs.
+// lights hard and the same two soft, and a mesh sphere beside the volume,
+// and the tail does take most of those slabs.
 TEST(Convolution, EmptyTailMatchesTheFullPass) {
-  for (int variant = 0; variant < 4; ++variant) {
+  for (int variant = 0; variant < 5; ++variant) {
     Scene scene = edge_scene(64);
     scene.set_planes({Plane{vec3(0.0f, 0.0f, -60.0f), vec3(0.0f, 0.0f, 1.0f), vec3(0.8f)}});
     if (variant == 1) {
@@ -207,7 +208,10 @@ TEST(Convolution, EmptyTailMatchesTheFullPass) {
       cam.ortho_height = 70.0f;
       scene.set_camera(cam);
     }
-    if (variant >= 2) {
+    if (variant == 4) {  // reaching 6 units below the volume box
+      scene.set_meshes({testing::homogeneous_sphere(8.0f, vec3(-6.0f, 4.0f, -14.0f), 0.4f)});
+    }
+    if (variant >= 2 && variant <= 3) {
       Light b = scene.lights()[0];
       b.direction = glm::normalize(vec3(-0.2f, 0.45f, -1.0f));
       b.color = vec3(0.3f, 0.5f, 1.0f);

@@ -132,7 +132,7 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
   const float voxel = view.volume.min_spacing();
   float z_front = box_depth(box, cam, false);
   float z_back = box_depth(box, cam, true);
-  const float z_box_back = z_back;  // no volume sample lies beyond
+  const float z_box_back = z_back;  // no volume sample or mesh lies beyond
   if (!cam.orthographic) z_front = glm::max(z_front, 1e-4f);
   const float box_extent = glm::max(z_back - z_front, 0.0f);
   const float e = settings_.slab_distance_voxels > 0.0f ? settings_.slab_distance_voxels * voxel
@@ -308,16 +308,25 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
     p.done = true;
   };
 
-  // The empty tail. Slabs behind the volume box (with no meshes) hold no
-  // medium, and only the pixels whose plane a slab hits read its light. Once
+  // The empty tail. Slabs behind the box of the volume and the meshes hold
+  // no medium (unless a ray ends inside a mesh, an open one),
+  // and only the pixels whose plane a slab hits read their light. Once
   // every carried texel has been clear of a medium for min_age slabs,
   // propagate gives every pixel the carried light. So, from there to the
   // last slab but one, a slab steps the carried grids (a soft light's
   // buffers are still convolved) and lights the pixels whose plane it hits,
   // one read each, instead of passing over every pixel (a floor far below
   // the volume: about half the slabs, docs/PERFORMANCE.md).
+  bool ends_inside = false;
+  if (has_meshes) {
+    for (const PixelState& p : px) {
+      std::uint32_t inside = p.layers.inside;
+      for (std::uint32_t j = p.layers.next; j < p.layers.end; ++j) inside ^= 1u << meshes.ldi.fragments[j].object;
+      ends_inside = ends_inside || inside != 0u;
+    }
+  }
   int tail_from = slabs;
-  if (settings_.empty_tail && light_count > 0 && !has_meshes) {
+  if (settings_.empty_tail && light_count > 0 && !ends_inside) {
     const int first_empty = int(std::ceil(glm::max(z_box_back - z_front, 0.0f) / e)) + 1;
     tail_from = glm::min(slabs, first_empty + (any_carried ? clear_slabs : 0) + 2);
   }
