@@ -21,7 +21,8 @@
 // last slab's light.
 // Early ray termination stops the shading of a pixel, never its light
 // update (neighbours read it through the kernel).
-// Behind the box (no meshes) the slabs down to a far floor hold no medium:
+// Behind the box (of the volume and the meshes) the slabs down to a far
+// floor hold no medium:
 // once the carried grids have been clear for a while they only step the
 // grids, convolve the soft lights' buffers and light the plane hits in them
 // (the empty tail, slab_renderer.cpp).
