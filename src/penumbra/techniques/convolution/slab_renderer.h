@@ -22,10 +22,9 @@
 // Early ray termination stops the shading of a pixel, never its light
 // update (neighbours read it through the kernel).
 // Behind the box (of the volume and the meshes) the slabs down to a far
-// floor hold no medium:
-// once the carried grids have been clear for a while they only step the
-// grids, convolve the soft lights' buffers and light the plane hits in them
-// (the empty tail, slab_renderer.cpp).
+// floor hold no medium: once the carried grids have been clear for a while
+// they only step the grids, convolve the soft lights' buffers and light the
+// plane hits in them (the empty tail, slab_renderer.cpp).
 // Meshes (step 2): each pixel walks its layered depth image fragments slab by
 // slab (mesh_layers.h); the part of the slab inside a mesh is one more
 // sample, of the mesh's detail function through its material TF, lit with
