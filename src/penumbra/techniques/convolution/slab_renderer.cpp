@@ -340,7 +340,7 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
     for (std::size_t i = 0; i < pixels; ++i) {
       const PixelState& p = px[i];
       if (p.done || p.plane < 0) continue;
-      int k = glm::clamp(int(std::floor((p.z_plane - z_front) / e)), tail_from, slabs);
+      int k = int(glm::clamp(std::floor((p.z_plane - z_front) / e), float(tail_from), float(slabs)));
       while (k > tail_from && p.z_plane < slab_far_edge(k - 1)) --k;
       while (k < slabs && !(p.z_plane < slab_far_edge(k))) ++k;
       if (k >= slabs - 1) continue;  // the last slab and beyond take the full pass
