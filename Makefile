@@ -3,6 +3,8 @@
 # Release into build/.
 BUILD ?= build
 JOBS ?= $(shell nproc)
+# Extra CMake options for the build/ configuration (.ci/run sets some).
+CMAKE_ARGS ?=
 
 .PHONY: all deps configure build demo test sanitize fuzz bench clean
 
@@ -12,7 +14,7 @@ deps:
 	@scripts/install-deps.sh
 
 configure: deps
-	@cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release -DPENUMBRA_BUILD_TESTS=ON > /dev/null
+	@cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release -DPENUMBRA_BUILD_TESTS=ON $(CMAKE_ARGS) > /dev/null
 
 build: configure
 	@cmake --build $(BUILD) -j $(JOBS)

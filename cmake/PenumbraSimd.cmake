@@ -8,11 +8,20 @@
 # binary runs on any x86-64 CPU and takes the widest packets it has
 # (DESIGN-NOTES.md, "SIMD units").
 option(PENUMBRA_SIMD "Build the AVX2 and AVX-512 packet paths (x86-64)" ON)
+# Which of them: both for a user's build (one binary for any x86-64 CPU); CI
+# on a CPU without AVX-512 builds the AVX2 units only, which are all it can
+# run (.ci/run, docs/RELIABILITY.md).
+set(PENUMBRA_SIMD_TARGET_LIST "Avx2;Avx3" CACHE STRING "The SIMD targets to build: Avx2, Avx3 or both")
 
 set(PENUMBRA_SIMD_TARGETS "")
 if(PENUMBRA_SIMD AND CMAKE_SYSTEM_PROCESSOR MATCHES "^(x86_64|AMD64|amd64)$")
   find_package(hwy REQUIRED)
-  set(PENUMBRA_SIMD_TARGETS Avx2 Avx3)
+  foreach(simd IN LISTS PENUMBRA_SIMD_TARGET_LIST)
+    if(NOT simd MATCHES "^(Avx2|Avx3)$")
+      message(FATAL_ERROR "PENUMBRA_SIMD_TARGET_LIST: unknown target '${simd}' (Avx2, Avx3)")
+    endif()
+  endforeach()
+  set(PENUMBRA_SIMD_TARGETS ${PENUMBRA_SIMD_TARGET_LIST})
 endif()
 if(PENUMBRA_SIMD_TARGETS)
   set(PENUMBRA_SIMD_TARGETS_FOUND TRUE)
