@@ -184,7 +184,6 @@ PENUMBRA_HD inline float convolve_texel_mapped(const SlabFrame& f, const SlabMap
 glm::mat2 interpolation_corrected_covariance(SlabKernelType type, int samples, vec2 mean, const glm::mat2& covariance,
                                              std::uint64_t seed, float pixels_per_unit);
 
-// The whole buffer for the slab at `depth` (parallel over rows).
 // Row y of convolve_texel_mapped for a kernel of several taps the same at
 // every pixel (no per-pixel rotation), L::kWidth texels at a time, into
 // `incoming` (the row's first texel).
@@ -226,8 +225,11 @@ using ConvolveRow = void (*)(const SlabFrame&, const SlabMapping&, const SlabKer
 // nullptr.
 ConvolveRow convolve_row_function(const SlabKernel& kernel, std::size_t pixels);
 
-// Slab k's incoming light from slab k - 1's (`previous`): kernels of several
-// taps without per-pixel rotation run as packets where the build has them.
+// The whole buffer for the slab at `depth` (parallel over rows): slab k's
+// incoming light from slab k - 1's (`previous`). Kernels of several taps
+// without per-pixel rotation run by rows (convolve_row, as packets where the
+// build has them); the rotated Poisson kernel and single taps per texel
+// (convolve_texel_mapped).
 void convolve_slab(const SlabFrame& frame, const SlabKernel& kernel, const float* previous, float* incoming,
                    float depth);
 
