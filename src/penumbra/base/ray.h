@@ -88,11 +88,19 @@ PENUMBRA_HD inline Interval clip_interval(const Ray& ray, const vec4* planes, in
   return r;
 }
 
-PENUMBRA_HD inline bool inside_clip_planes(vec3 p, const vec4* planes, int plane_count) {
+// Lanes of points on the kept side of every clip plane (a . p + w >= 0, or NaN).
+template <class L>
+PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Mask inside_clip_planes(const typename L::Vec3& p, const vec4* planes,
+                                                                      int plane_count) {
+  typename L::Mask inside(true);
   for (int i = 0; i < plane_count; ++i) {
-    if (glm::dot(vec3(planes[i]), p) + planes[i].w < 0.0f) return false;
+    inside = inside & !(dot(typename L::Vec3(vec3(planes[i])), p) + planes[i].w < 0.0f);
+    if (none(inside)) break;
   }
-  return true;
+  return inside;
+}
+PENUMBRA_HD inline bool inside_clip_planes(vec3 p, const vec4* planes, int plane_count) {
+  return inside_clip_planes<ScalarLanes>(p, planes, plane_count);
 }
 
 }  // namespace penumbra

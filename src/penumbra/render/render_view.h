@@ -59,10 +59,19 @@ struct RenderView {
   // The majorant of the macrocell around an index-space point (clamped to
   // the grid): 0 where no sample can have extinction, so a kernel may skip
   // the volume lookup there.
-  PENUMBRA_HD float majorant_at(vec3 index) const {
-    const ivec3 c = glm::clamp(ivec3(glm::floor(index / float(macrocells.cell_size))), ivec3(0), macrocells.dims - 1);
-    return majorants[macrocells.index(c)];
+  // Written over a lane type (base/lanes.h); the float form is its one-lane
+  // instance.
+  template <class L>
+  PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Float majorant_at(const typename L::Vec3& index) const {
+    using F = typename L::Float;
+    using I = typename L::Int;
+    const float size = float(macrocells.cell_size);
+    const I x = to_int_nonnegative(clamp(floor(index.x / size), F(0.0f), F(float(macrocells.dims.x - 1))));
+    const I y = to_int_nonnegative(clamp(floor(index.y / size), F(0.0f), F(float(macrocells.dims.y - 1))));
+    const I z = to_int_nonnegative(clamp(floor(index.z / size), F(0.0f), F(float(macrocells.dims.z - 1))));
+    return gather(majorants, typename L::Index(x + I(macrocells.dims.x) * (y + I(macrocells.dims.y) * z)));
   }
+  PENUMBRA_HD float majorant_at(vec3 index) const { return majorant_at<ScalarLanes>(index); }
 };
 
 }  // namespace penumbra

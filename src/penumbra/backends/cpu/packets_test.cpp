@@ -130,13 +130,14 @@ ParameterSettings quick_params(const TechniqueInfo& info) {
 // The techniques whose render is the shared loop with a packet-capable
 // Lighting (every render_lit technique, emission-absorption and phong), and
 // occlusion-map, whose soft-shadow marches run as packets, ipsvi, whose
-// light segments do, and convolution, whose carried light is read as them
-// (and a soft light's slab step, a variant below).
+// light segments do, convolution, whose carried light is read as them
+// (and a soft light's slab step, a variant below), and half-angle, whose eye
+// and light rows are.
 const std::set<std::string> kPacketTechniques = {"emission-absorption", "phong",         "shadow-rays",
                                                  "filtered-sat",        "sat-ao",        "cone-shadows",
                                                  "ambient-scattering",  "shadow-map",    "deep-shadow-map",
                                                  "cssm",                "occlusion-map", "ipsvi",
-                                                 "convolution"};
+                                                 "convolution",         "half-angle"};
 
 // Prepares once (light-space structures do not depend on the packet mode;
 // building them once per scene rather than per mode keeps this test quick)
@@ -163,12 +164,14 @@ double max_difference(const Image& a, const Image& b) {
 // occlusion-map's DVR mode lights every DVR sample as packets; ipsvi's
 // light segments carry the diffuse part's optical depth when albedo > 0 and
 // the colour they add with the paper's light model; convolution's soft light
-// steps its buffers with several taps as packets.
+// steps its buffers with several taps as packets; half-angle's diffuse part
+// (albedo > 0) adds the diffuse attenuation to its rows.
 const std::vector<std::pair<std::string, ParameterSettings>> kPacketVariants = {
     {"occlusion-map", {{"mode", std::string("dvr")}}},
     {"ipsvi", {{"albedo", 0.5}}},
     {"ipsvi", {{"light_model", std::string("paper")}}},
-    {"convolution", {{"light_sigma_x2", 0.01}, {"light_sigma_y2", 0.004}}}};
+    {"convolution", {{"light_sigma_x2", 0.01}, {"light_sigma_y2", 0.004}}},
+    {"half-angle", {{"albedo", 0.5}}}};
 
 TEST(PacketPath, EveryTechniqueMatchesTheScalarPath) {
   const std::vector<SimdMode> modes = packet_modes();

@@ -104,18 +104,26 @@ void HalfAngleRenderer::prepare(const Scene& scene, const HalfAngleSettings& set
   const std::size_t texels = std::size_t(n) * std::size_t(n);
   std::size_t lights = 0;
   for (const Light& light : scene.lights()) lights += light.type != LightType::Environment;
-  check_memory_budget("half-angle light rays", checked_product({texels, sizeof(Ray), std::uint64_t(lights)}));
+  const std::size_t stride = texels + kSlicedRowPadding;
+  check_memory_budget("half-angle light rays",
+                      checked_product({stride, SlicedRows::kLightFields * sizeof(float), std::uint64_t(lights)}));
   lights_.clear();
   for (const Light& light : scene.lights()) {
     if (light.type == LightType::Environment) continue;
     LightRays lr;
     lr.projection = make_light_cache_projection(light, box, n);
-    lr.rays.resize(texels);
+    lr.stride = stride;
+    lr.rays.assign(SlicedRows::kLightFields * stride, 0.0f);
+    const SlicedRows rows{lr.rays.data(), stride};
     parallel_for(0, n, [&](std::int64_t first, std::int64_t last) {
       for (std::int64_t y = first; y < last; ++y) {
         for (int x = 0; x < n; ++x) {
-          lr.rays[std::size_t(x) + std::size_t(n) * std::size_t(y)] =
-              lr.projection.texel_ray(vec2(float(x) + 0.5f, float(y) + 0.5f));
+          const Ray r = lr.projection.texel_ray(vec2(float(x) + 0.5f, float(y) + 0.5f));
+          const std::size_t i = std::size_t(x) + std::size_t(n) * std::size_t(y);
+          for (int c = 0; c < 3; ++c) {
+            rows.field(SlicedRows::kOriginX + c)[i] = r.origin[c];
+            rows.field(SlicedRows::kDirectionX + c)[i] = r.direction[c];
+          }
         }
       }
     });
@@ -144,30 +152,55 @@ void HalfAngleRenderer::render(const Scene& scene, Image& image, RenderStats* st
   const int n = size_;
   const std::size_t pixels = std::size_t(width) * std::size_t(height);
   const std::size_t texels = std::size_t(n) * std::size_t(n);
+  const std::size_t stride = pixels + kSlicedRowPadding;
   check_memory_budget("half-angle buffers",
-                      checked_product({texels, 2 * sizeof(vec4)}) +
-                          checked_product({pixels, sizeof(vec4) + sizeof(SlicedRay) + sizeof(EyePixel) + 8}));
+                      checked_product({texels, 2 * sizeof(vec4)}) + checked_product({pixels, sizeof(vec4) + 8}) +
+                          checked_product({stride, SlicedRows::kEyeFields * sizeof(float) + 1}));
   light_.resize(texels);
   blur_.resize(texels);
   sums_.assign(pixels, vec4(0.0f));
-  std::vector<SlicedRay> eye(pixels);
+  // The viewing rays and, per pass, the eye pixels (half_angle_kernels.h).
+  std::vector<float> eye_data(SlicedRows::kEyeFields * stride, 0.0f);
+  const SlicedRows eye{eye_data.data(), stride};
+  float* const red = eye.field(SlicedRows::kRed);
+  float* const green = eye.field(SlicedRows::kGreen);
+  float* const blue = eye.field(SlicedRows::kBlue);
+  float* const transmittance = eye.field(SlicedRows::kTransmittance);
+  float* const t_max = eye.field(SlicedRows::kTMax);
+  auto origin = [&](std::size_t i) {
+    return vec3(eye.field(SlicedRows::kOriginX)[i], eye.field(SlicedRows::kOriginY)[i],
+                eye.field(SlicedRows::kOriginZ)[i]);
+  };
+  auto direction = [&](std::size_t i) {
+    return vec3(eye.field(SlicedRows::kDirectionX)[i], eye.field(SlicedRows::kDirectionY)[i],
+                eye.field(SlicedRows::kDirectionZ)[i]);
+  };
   std::vector<int> eye_plane(pixels, -1);
   parallel_for(0, height, [&](std::int64_t first, std::int64_t last) {
     for (std::int64_t y = first; y < last; ++y) {
       for (int x = 0; x < width; ++x) {
         const std::size_t i = std::size_t(x) + std::size_t(width) * std::size_t(y);
         const Ray ray = view.camera.pixel_ray(float(x) + 0.5f, float(y) + 0.5f, width, height);
-        eye[i].origin = ray.origin;
-        eye[i].direction = ray.direction;
-        eye_plane[i] = nearest_plane(view, ray, kInfinity, eye[i].t_max);
+        for (int c = 0; c < 3; ++c) {
+          eye.field(SlicedRows::kOriginX + c)[i] = ray.origin[c];
+          eye.field(SlicedRows::kDirectionX + c)[i] = ray.direction[c];
+        }
+        eye_plane[i] = nearest_plane(view, ray, kInfinity, t_max[i]);
       }
     }
   });
+  // The packet rows of the active SIMD target, where the view can run as
+  // packets (both null: the scalar rows).
+  const SimdTarget target = packet_target(view);
+  const auto eye_packets =
+      simd_unit_function(target, []<SimdTarget T>() { return &eye_slice_row_packets<T>; });
+  const auto light_packets =
+      simd_unit_function(target, []<SimdTarget T>() { return &light_slice_row_packets<T>; });
   const ForwardScattering scattering =
       make_forward_scattering(settings_.albedo, settings_.cone_angle_deg, view.material.phase_g, view.material.albedo,
                               view.volume.min_spacing());
   std::atomic<std::uint64_t> samples{0};
-  std::vector<EyePixel> px(pixels);
+  std::vector<std::uint8_t> plane_done(pixels);
   std::vector<int> bucket_start, bucket_pixels;
 
   for (std::size_t li = 0; li < lights.size(); ++li) {
@@ -185,7 +218,7 @@ void HalfAngleRenderer::render(const Scene& scene, Image& image, RenderStats* st
     kernel.shadow = &lit_shadow;
     kernel.separate_shadow_tf = scene.shadow_transfer_function().has_value();
     kernel.slices = make_slice_setup(view.camera, light, view.box, settings_.slices, view.step);
-    const std::vector<Ray>& light_rays = lights_[li].rays;
+    const SlicedRows light_rays{lights_[li].rays.data(), lights_[li].stride};
     kernel.projection = lights_[li].projection;
     kernel.light = light_.data();
     kernel.scattering = scattering;
@@ -197,12 +230,13 @@ void HalfAngleRenderer::render(const Scene& scene, Image& image, RenderStats* st
     // number of slices lying before it along s), bucketed.
     bucket_start.assign(std::size_t(slices.count) + 2, 0);
     std::vector<int> plane_slice(pixels, -1);
+    const vec3 base = slices.eye_front_to_back ? vec3(0.0f) : lit.background;
     for (std::size_t i = 0; i < pixels; ++i) {
-      eye[i].origin_s = glm::dot(s, eye[i].origin);
-      eye[i].direction_s = glm::dot(s, eye[i].direction);
-      px[i] = EyePixel{slices.eye_front_to_back ? vec3(0.0f) : lit.background, 1.0f, false};
+      red[i] = base.r, green[i] = base.g, blue[i] = base.b;
+      transmittance[i] = 1.0f;
+      plane_done[i] = 0;
       if (eye_plane[i] < 0) continue;
-      const float q = glm::dot(s, eye[i].origin + eye[i].t_max * eye[i].direction);
+      const float q = glm::dot(s, origin(i) + t_max[i] * direction(i));
       const float before = std::ceil((q - slices.first) / slices.spacing);
       plane_slice[i] = int(std::clamp(before, 0.0f, float(slices.count)));
       ++bucket_start[std::size_t(plane_slice[i]) + 1];
@@ -220,20 +254,20 @@ void HalfAngleRenderer::render(const Scene& scene, Image& image, RenderStats* st
       parallel_for(b0, b1, [&](std::int64_t first, std::int64_t last) {
         for (std::int64_t b = first; b < last; ++b) {
           const std::size_t i = std::size_t(bucket_pixels[std::size_t(b)]);
-          EyePixel& p = px[i];
-          if (slices.eye_front_to_back && p.transmittance <= 1.0f - lit.ert_threshold) continue;
-          const vec3 q = eye[i].origin + eye[i].t_max * eye[i].direction;
+          if (slices.eye_front_to_back && transmittance[i] <= 1.0f - lit.ert_threshold) continue;
+          const vec3 q = origin(i) + t_max[i] * direction(i);
           const vec3 visibility = kernel.visibility(q, 0.0f, vec3(0.0f));
           const vec3 c = ScatteringLighting<FixedVisibility>{&lit, {visibility}, lit.material.shading}.plane(
-              PlaneHit{q, eye_plane[i], eye[i].direction});
+              PlaneHit{q, eye_plane[i], direction(i)});
+          vec3 color = c;
           if (slices.eye_front_to_back) {
-            p.color += p.transmittance * c;
-            p.transmittance = 0.0f;
+            color = vec3(red[i], green[i], blue[i]) + transmittance[i] * c;
+            transmittance[i] = 0.0f;
           } else {
-            p.color = c;
-            p.transmittance = 1.0f;
+            transmittance[i] = 1.0f;
           }
-          p.plane_done = true;
+          red[i] = color.r, green[i] = color.g, blue[i] = color.b;
+          plane_done[i] = 1;
         }
       });
     };
@@ -251,29 +285,35 @@ void HalfAngleRenderer::render(const Scene& scene, Image& image, RenderStats* st
         shade_planes(k);
         const int corners = slice_polygon(view.box, s, slices.position(k), polygon);
         const Rect er = eye_rect(view.camera, width, height, polygon, corners);
-        parallel_for(er.y0, er.y1, [&](std::int64_t first, std::int64_t last) {
-          std::uint64_t count = 0;
-          for (std::int64_t y = first; y < last; ++y) {
-            for (int x = er.x0; x < er.x1; ++x) {
-              const std::size_t i = std::size_t(x) + std::size_t(width) * std::size_t(y);
-              eye_slice_sample(kernel, sampler, eye[i], k, px[i], count);
+        if (er.x1 > er.x0) {
+          parallel_for(er.y0, er.y1, [&](std::int64_t first, std::int64_t last) {
+            std::uint64_t count = 0;
+            for (std::int64_t y = first; y < last; ++y) {
+              const std::size_t i = std::size_t(er.x0) + std::size_t(width) * std::size_t(y);
+              if (eye_packets) {
+                count += eye_packets(kernel, eye, k, i, er.x1 - er.x0);
+              } else {
+                eye_slice_row<ScalarLanes>(kernel, sampler, eye, k, i, er.x1 - er.x0, count);
+              }
             }
-          }
-          samples.fetch_add(count, std::memory_order_relaxed);
-        });
+            samples.fetch_add(count, std::memory_order_relaxed);
+          });
+        }
         const Rect lr = light_rect(kernel.projection, polygon, corners);
-        parallel_for(lr.y0, lr.y1, [&](std::int64_t first, std::int64_t last) {
-          std::uint64_t count = 0;
-          for (std::int64_t y = first; y < last; ++y) {
-            for (int x = lr.x0; x < lr.x1; ++x) {
-              const std::size_t i = std::size_t(x) + std::size_t(n) * std::size_t(y);
-              const Ray& r = light_rays[i];
-              const SlicedRay ray{r.origin, r.direction, glm::dot(s, r.origin), glm::dot(s, r.direction), kInfinity};
-              light_slice_sample(kernel, sampler, ray, k, light_[i], count);
+        if (lr.x1 > lr.x0) {
+          parallel_for(lr.y0, lr.y1, [&](std::int64_t first, std::int64_t last) {
+            std::uint64_t count = 0;
+            for (std::int64_t y = first; y < last; ++y) {
+              const std::size_t i = std::size_t(lr.x0) + std::size_t(n) * std::size_t(y);
+              if (light_packets) {
+                count += light_packets(kernel, light_rays, k, i, lr.x1 - lr.x0, light_.data());
+              } else {
+                light_slice_row<ScalarLanes>(kernel, sampler, light_rays, k, i, lr.x1 - lr.x0, light_.data(), count);
+              }
             }
-          }
-          samples.fetch_add(count, std::memory_order_relaxed);
-        });
+            samples.fetch_add(count, std::memory_order_relaxed);
+          });
+        }
         if (scattering.has_diffuse()) {
           blur_after_slice(light_, blur_, n, TexelRect{lr.x0, lr.y0, lr.x1, lr.y1}, lit_area, variance);
         }
@@ -283,18 +323,19 @@ void HalfAngleRenderer::render(const Scene& scene, Image& image, RenderStats* st
     });
 
     for (std::size_t i = 0; i < pixels; ++i) {
-      EyePixel& p = px[i];
-      float alpha = 1.0f - p.transmittance;
-      if (p.plane_done) {
+      vec3 color(red[i], green[i], blue[i]);
+      float alpha = 1.0f - transmittance[i];
+      if (plane_done[i]) {
         alpha = 1.0f;
-      } else if (slices.eye_front_to_back && p.transmittance > 1.0f - lit.ert_threshold) {
-        p.color += p.transmittance * lit.background;
+      } else if (slices.eye_front_to_back && transmittance[i] > 1.0f - lit.ert_threshold) {
+        color += transmittance[i] * lit.background;
       }
-      sums_[i] += vec4(p.color, first_pass ? alpha : 0.0f);
+      sums_[i] += vec4(color, first_pass ? alpha : 0.0f);
     }
   }
   std::copy(sums_.begin(), sums_.end(), image.data());
   if (stats) {
+    stats->simd = eye_packets ? target : SimdTarget::Scalar;
     stats->samples += samples.load();
     stats->rays += std::uint64_t(pixels) * lights.size();
   }
@@ -302,7 +343,7 @@ void HalfAngleRenderer::render(const Scene& scene, Image& image, RenderStats* st
 
 std::uint64_t HalfAngleRenderer::aux_bytes() const {
   std::uint64_t bytes = (light_.size() + blur_.size()) * sizeof(vec4);
-  for (const LightRays& lr : lights_) bytes += lr.rays.size() * sizeof(Ray);
+  for (const LightRays& lr : lights_) bytes += lr.rays.size() * sizeof(float);
   return bytes;
 }
 

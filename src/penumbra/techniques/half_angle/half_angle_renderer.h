@@ -1,12 +1,15 @@
 #pragma once
 // The CPU half-angle slicer: per light, a sweep over the slices of
 // slice_geometry.h with a 2D eye buffer (the image) and a 2D light buffer
-// (light_cache_projection.h's mapping, light_buffer_size texels per side). Per slice, in parallel over buffer rows: opaque planes whose hit
-// lies before this slice are shaded, the eye buffer takes the slice's samples
-// lit by the light buffer, then the light buffer is attenuated by the slice
-// and (with albedo > 0) its diffuse part blurred. Only the rows the slice's
-// cut through the box projects to are visited; empty macrocells cost no sample.
-// Several lights: one sweep each, added up as in IPSVI.
+// (light_cache_projection.h's mapping, light_buffer_size texels per side).
+// Per slice, in parallel over buffer rows: opaque planes whose hit lies
+// before this slice are shaded, the eye buffer takes the slice's samples lit
+// by the light buffer, then the light buffer is attenuated by the slice and
+// (with albedo > 0) its diffuse part blurred. Only the rows the slice's cut
+// through the box projects to are visited; empty macrocells cost no sample.
+// A row runs 8 or 16 pixels or texels at a time where the view can run as
+// packets (half_angle_packets.cpp), one at a time otherwise: the same kernels
+// (half_angle_kernels.h). Several lights: one sweep each, added up as in IPSVI.
 #include "penumbra/render/image.h"
 #include "penumbra/render/render_loop.h"
 #include "penumbra/render/scene_resources.h"
@@ -38,7 +41,10 @@ class HalfAngleRenderer {
  private:
   struct LightRays {
     LightCacheProjection projection;
-    std::vector<Ray> rays;  // per texel: the light ray through its centre
+    // Per texel: the light ray through its centre (SlicedRows' first six
+    // fields, half_angle_kernels.h).
+    std::vector<float> rays;
+    std::size_t stride = 0;
   };
 
   SceneResources resources_;

@@ -61,9 +61,12 @@ struct ForwardScattering {
     return diffuse_extinction<ScalarLanes>(color, sigma_t);
   }
 
-  PENUMBRA_HD vec3 visibility(float direct, vec3 diffuse) const {
-    return (1.0f - blend) * vec3(direct) + blend * diffuse;
+  template <class L>
+  PENUMBRA_HD typename L::Vec3 visibility(typename L::Float direct, const typename L::Vec3& diffuse) const {
+    using V = typename L::Vec3;
+    return (1.0f - blend) * V(direct) + blend * diffuse;
   }
+  PENUMBRA_HD vec3 visibility(float direct, vec3 diffuse) const { return visibility<ScalarLanes>(direct, diffuse); }
 };
 
 // theta in degrees, g the scene's phase asymmetry, voxel the smallest spacing.
@@ -80,10 +83,20 @@ inline ForwardScattering make_forward_scattering(float blend, float cone_angle_d
 }
 
 // Visibility a technique has already computed for the sample being shaded,
-// handed to ScatteringLighting (lighting.h) as its Visibility.
-struct FixedVisibility {
-  vec3 value{1.0f};
-  PENUMBRA_HD vec3 operator()(int, vec3, const LightSample&) const { return value; }
+// handed to ScatteringLighting (lighting.h) as its Visibility: one value per
+// lane of the packet being shaded (FixedVisibility: one ray).
+template <class L> struct FixedVisibilityL {
+  typename L::Vec3 value{1.0f};
+  PENUMBRA_HD vec3 operator()(int, vec3, const LightSample&) const
+    requires(L::kWidth == 1)
+  {
+    return value;
+  }
+  template <class P>
+  PENUMBRA_HD typename P::Vec3 lanes(int, const typename P::Vec3&, const LightSampleL<P>&, typename P::Mask) const {
+    return value;
+  }
 };
+using FixedVisibility = FixedVisibilityL<ScalarLanes>;
 
 }  // namespace penumbra

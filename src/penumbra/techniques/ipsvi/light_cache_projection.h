@@ -43,27 +43,40 @@ struct LightCacheProjection {
   float max_depth = 1.0f;        // the largest depth of a point of the box
 
   // (u, v) in texel units and the depth. Points the buffer does not cover get
-  // u = v = -1 (outside every texel).
-  PENUMBRA_HD vec3 project(vec3 p) const {
+  // u = v = -1 (outside every texel). Written over a lane type (base/lanes.h);
+  // the octahedral map runs lane by lane.
+  template <class L> PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Vec3 project(const typename L::Vec3& p) const {
+    using F = typename L::Float;
+    using V = typename L::Vec3;
+    const V q = p - V(origin);
     switch (mapping) {
-      case LightMapping::Orthographic: {
-        const vec3 q = p - origin;
-        return vec3(glm::dot(q, side_u) * scale.x, glm::dot(q, side_v) * scale.y, glm::dot(q, axis));
-      }
+      case LightMapping::Orthographic:
+        return V(dot(q, V(side_u)) * scale.x, dot(q, V(side_v)) * scale.y, dot(q, V(axis)));
       case LightMapping::Perspective: {
-        const vec3 q = p - origin;
-        const float z = glm::dot(q, axis);
-        const float depth = glm::length(q);
-        if (!(z > 1e-6f * depth)) return vec3(-1.0f, -1.0f, depth);
-        return vec3((glm::dot(q, side_u) / z - lower.x) * scale.x, (glm::dot(q, side_v) / z - lower.y) * scale.y,
-                    depth);
+        const F z = dot(q, V(axis));
+        const F depth = length(q);
+        const auto covered = z > 1e-6f * depth;
+        const F u = (dot(q, V(side_u)) / z - lower.x) * scale.x;
+        const F v = (dot(q, V(side_v)) / z - lower.y) * scale.y;
+        return select(covered, V(u, v, depth), V(F(-1.0f), F(-1.0f), depth));
       }
       case LightMapping::Octahedral: break;
     }
-    const vec3 q = p - origin;
-    const float depth = glm::length(q);
-    return vec3(octahedral_encode(q) * float(size), depth);
+    if constexpr (L::kWidth == 1) {
+      return octahedral_texel(q);
+    } else {
+      float x[L::kWidth], y[L::kWidth], z[L::kWidth];
+      L::store(q.x, x), L::store(q.y, y), L::store(q.z, z);
+      for (int i = 0; i < L::kWidth; ++i) {
+        const vec3 r = octahedral_texel(vec3(x[i], y[i], z[i]));
+        x[i] = r.x, y[i] = r.y, z[i] = r.z;
+      }
+      return V(L::load(x), L::load(y), L::load(z));
+    }
   }
+  // The octahedral map's (u, v, depth) of q = p - origin.
+  PENUMBRA_HD vec3 octahedral_texel(vec3 q) const { return vec3(octahedral_encode(q) * float(size), glm::length(q)); }
+  PENUMBRA_HD vec3 project(vec3 p) const { return project<ScalarLanes>(p); }
 
   // The light ray through a buffer position: its origin lies at depth 0 and
   // depth grows with the ray parameter (unit direction, the light's travel
