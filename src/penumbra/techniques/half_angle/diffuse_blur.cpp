@@ -10,10 +10,19 @@ namespace {
 
 bool empty(const TexelRect& r) { return r.x1 <= r.x0 || r.y1 <= r.y0; }
 
+// One texel of a pass: the diffuse channels (1..3) of `c` blurred with its
+// neighbours `a` and `b`, the direct one (0) kept.
+inline void blur_texel(const float* c, const float* a, const float* b, float keep, float w, float* out) {
+  out[0] = c[0];
+  for (int k = 1; k < 4; ++k) out[k] = keep * c[k] + w * (a[k] + b[k]);
+}
+
 void blur_axis(std::vector<vec4>& buffer, std::vector<vec4>& scratch, int n, TexelRect& r, bool along_x, float v) {
   if (!(v > 1e-4f)) return;
   const int passes = int(std::ceil(v / 0.5f));
   const float w = v / (2.0f * float(passes));
+  const float keep = 1.0f - 2.0f * w;
+  const std::size_t row_floats = 4 * std::size_t(n);
   for (int pass = 0; pass < passes; ++pass) {
     if (along_x) {
       r.x0 = std::max(r.x0 - 1, 0);
@@ -22,21 +31,39 @@ void blur_axis(std::vector<vec4>& buffer, std::vector<vec4>& scratch, int n, Tex
       r.y0 = std::max(r.y0 - 1, 0);
       r.y1 = std::min(r.y1 + 1, n);
     }
+    // The rect's rows as runs of floats, 4 per texel: a texel's neighbours
+    // are 4 floats away along x and a row away along y (the buffer's edges
+    // clamp: a texel there is its own neighbour). The interior loop has no
+    // branch, so the compiler runs it on vectors.
     parallel_for(r.y0, r.y1, [&](std::int64_t first, std::int64_t last) {
       for (std::int64_t y = first; y < last; ++y) {
-        for (int x = r.x0; x < r.x1; ++x) {
-          const int i = x + n * int(y);
-          const int prev = along_x ? (x > 0 ? i - 1 : i) : (y > 0 ? i - n : i);
-          const int next = along_x ? (x + 1 < n ? i + 1 : i) : (y + 1 < n ? i + n : i);
-          const vec4 c = buffer[std::size_t(i)], a = buffer[std::size_t(prev)], b = buffer[std::size_t(next)];
-          const vec3 out = (1.0f - 2.0f * w) * vec3(c.y, c.z, c.w) + w * (vec3(a.y, a.z, a.w) + vec3(b.y, b.z, b.w));
-          scratch[std::size_t(i)] = vec4(c.x, out);
+        const float* row = &buffer[std::size_t(n) * std::size_t(y)].x;
+        float* out = &scratch[std::size_t(n) * std::size_t(y)].x;
+        int x0 = r.x0, x1 = r.x1;
+        std::ptrdiff_t before = -4, after = 4;
+        if (along_x) {
+          if (x0 == 0) {
+            blur_texel(row, row, row + 4, keep, w, out);
+            ++x0;
+          }
+          if (x1 == n && x1 > x0) {
+            const std::size_t j = 4 * std::size_t(n - 1);
+            blur_texel(row + j, row + j - 4, row + j, keep, w, out + j);
+            --x1;
+          }
+        } else {
+          before = y > 0 ? -std::ptrdiff_t(row_floats) : 0;
+          after = y + 1 < n ? std::ptrdiff_t(row_floats) : 0;
+        }
+        for (std::size_t j = 4 * std::size_t(x0); j < 4 * std::size_t(x1); ++j) {
+          const float blurred = keep * row[j] + w * (row[std::ptrdiff_t(j) + before] + row[std::ptrdiff_t(j) + after]);
+          out[j] = (j & 3) == 0 ? row[j] : blurred;
         }
       }
     });
-    for (int y = r.y0; y < r.y1; ++y) {
-      std::copy(scratch.begin() + (r.x0 + n * y), scratch.begin() + (r.x1 + n * y), buffer.begin() + (r.x0 + n * y));
-    }
+    // The pass's result becomes the buffer: outside r both hold the unlit
+    // constant (blur_after_slice's precondition), inside it scratch is new.
+    buffer.swap(scratch);
   }
 }
 

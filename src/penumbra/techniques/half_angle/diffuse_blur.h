@@ -21,6 +21,9 @@ struct TexelRect {
 // their blur spread); it grows by the slice's own rectangle `slice` and by a
 // texel per blur pass, and the blur covers it, which is the same as blurring
 // the whole buffer. Passes of the binomial [w, 1 - 2w, w], edges clamped.
+// Each pass writes `scratch` inside `lit` and then swaps it with `buffer`
+// (no copy back), so `scratch` must equal `buffer` outside `lit` (both the
+// unlit constant), and `buffer.data()` changes.
 void blur_after_slice(std::vector<vec4>& buffer, std::vector<vec4>& scratch, int n, TexelRect slice, TexelRect& lit,
                       vec2 variance);
 

@@ -226,6 +226,7 @@ void HalfAngleRenderer::render(const Scene& scene, Image& image, RenderStats* st
     last_slices_ = slices.count;
     const vec3 s = slices.axis;
     std::fill(light_.begin(), light_.end(), vec4(1.0f));
+    std::fill(blur_.begin(), blur_.end(), vec4(1.0f));  // the blur swaps the two (diffuse_blur.h)
     // Eye pixels, and the slice before which each plane hit is shaded (the
     // number of slices lying before it along s), bucketed.
     bucket_start.assign(std::size_t(slices.count) + 2, 0);
@@ -316,6 +317,7 @@ void HalfAngleRenderer::render(const Scene& scene, Image& image, RenderStats* st
         }
         if (scattering.has_diffuse()) {
           blur_after_slice(light_, blur_, n, TexelRect{lr.x0, lr.y0, lr.x1, lr.y1}, lit_area, variance);
+          kernel.light = light_.data();
         }
       }
       shade_planes(slices.count);

@@ -165,7 +165,7 @@ TEST(HalfAngle, DiffuseBlurCoversTheWholeBuffer) {
       }
     }
   };
-  std::vector<vec4> scratch(buffer.size());
+  std::vector<vec4> scratch(buffer.size(), vec4(1.0f));  // the unlit constant outside `lit`, as the renderer keeps it
   TexelRect lit{n, n, 0, 0};
   const vec2 variance(0.8f, 0.6f);
   blur_after_slice(buffer, scratch, n, TexelRect{0, 4, 4, 12}, lit, variance);  // over the patch
