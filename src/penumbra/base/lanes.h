@@ -145,6 +145,24 @@ PENUMBRA_HD PENUMBRA_FORCE_INLINE void load_texel_pair_xyz(const std::int8_t* te
   second = load_texel_xyz(texels, offset + step);
 }
 
+// The first n lanes of a packet (1 <= n; all of them when n >= W): a row's
+// last, partial packet.
+template <class L> PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Mask first_lanes(int n) {
+  return L::from_bits(n >= 32 ? ~0u : (1u << n) - 1u);
+}
+
+// Stores the first n lanes of v at p (all W when n >= W): a row's last packet
+// must not write past the row, whose next entries may be another thread's.
+template <class L> PENUMBRA_HD PENUMBRA_FORCE_INLINE void store_first(typename L::Float v, float* p, int n) {
+  if (n >= L::kWidth) {
+    L::store(v, p);
+    return;
+  }
+  float lanes[L::kWidth];
+  L::store(v, lanes);
+  for (int i = 0; i < n; ++i) p[i] = lanes[i];
+}
+
 // Lane-generic helpers written once over L.
 template <class L> using LaneFloat = typename L::Float;
 template <class L> using LaneMask = typename L::Mask;

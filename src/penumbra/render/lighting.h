@@ -92,8 +92,7 @@ PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Vec3 light_visibility(const Visibi
 // cone-shadows.
 template <class L>
 PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Float sample_world(const VolumeView& grid, const typename L::Vec3& p) {
-  using V = typename L::Vec3;
-  return AnyVoxelSampler(grid.data, grid.dims, grid.type).sample<L>((p - V(grid.origin)) / V(grid.spacing));
+  return AnyVoxelSampler(grid.data, grid.dims, grid.type).sample<L>(grid.index_from_world<L>(p));
 }
 
 // The visibility of light `light` at p on opaque plane `plane`: the

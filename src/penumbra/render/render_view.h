@@ -60,7 +60,8 @@ struct RenderView {
   // the grid): 0 where no sample can have extinction, so a kernel may skip
   // the volume lookup there.
   // Written over a lane type (base/lanes.h); the float form is its one-lane
-  // instance.
+  // instance. Lanes that are off must hold a finite index (the gather reads
+  // every lane). The macrocell offset is MacrocellView::index's, in 32 bits.
   template <class L>
   PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Float majorant_at(const typename L::Vec3& index) const {
     using F = typename L::Float;

@@ -20,7 +20,14 @@ struct VolumeView {
   vec3 spacing{1.0f};
   vec3 origin{0.0f};
 
-  PENUMBRA_HD vec3 index_from_world(vec3 p) const { return (p - origin) / spacing; }
+  // Written over a lane type (base/lanes.h); the vec3 form is its one-lane
+  // instance.
+  template <class L>
+  PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Vec3 index_from_world(const typename L::Vec3& p) const {
+    using V = typename L::Vec3;
+    return (p - V(origin)) / V(spacing);
+  }
+  PENUMBRA_HD vec3 index_from_world(vec3 p) const { return index_from_world<ScalarLanes>(p); }
   PENUMBRA_HD vec3 world_from_index(vec3 i) const { return origin + i * spacing; }
   PENUMBRA_HD Box3 world_box() const { return Box3{origin, origin + vec3(dims - 1) * spacing}; }
   PENUMBRA_HD float min_spacing() const { return min_component(spacing); }

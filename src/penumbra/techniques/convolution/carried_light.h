@@ -200,7 +200,7 @@ PENUMBRA_HD std::uint64_t read_carried_row(const CarriedReadView& r, int width, 
   for (int x = 0; x < width; x += W) {
     const int count = width - x < W ? width - x : W;
     const typename L::Float px = typename L::Float(float(x)) + L::load(kCentres);
-    const std::uint32_t free = L::bits(read_carried_lanes<L>(r, px, py, L::from_bits((1u << count) - 1u), out));
+    const std::uint32_t free = L::bits(read_carried_lanes<L>(r, px, py, first_lanes<L>(count), out));
     for (int i = 0; i < count; ++i) {
       if ((free >> i) & 1u) {
         for (int c = 0; c < r.channels; ++c) {

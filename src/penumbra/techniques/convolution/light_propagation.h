@@ -204,13 +204,7 @@ PENUMBRA_HD void convolve_row(const SlabFrame& f, const SlabMapping& m, const Sl
       sum = sum + k.weights[j] * read_buffer_row<L>(previous, f.width, f.height, px + m.pixels_per_unit * (-o.x),
                                                     py + m.pixels_per_unit * o.y);
     }
-    if (f.width - x >= W) {
-      L::store(sum, incoming + x);
-    } else {
-      float tail[W];
-      L::store(sum, tail);
-      for (int i = 0; i < f.width - x; ++i) incoming[x + i] = tail[i];
-    }
+    store_first<L>(sum, incoming + x, f.width - x);
   }
 }
 

@@ -85,23 +85,6 @@ template <class L> struct TexelAttenuationL {
   typename L::Vec3 diffuse;
 };
 
-// The first n lanes (1 <= n <= W).
-template <class L> PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Mask first_lanes(int n) {
-  return L::from_bits(n >= 32 ? ~0u : (1u << n) - 1u);
-}
-
-// Stores the first n lanes of v at p (a row's last packet must not write
-// past the row: the next row may belong to another thread).
-template <class L> PENUMBRA_HD PENUMBRA_FORCE_INLINE void store_first(typename L::Float v, float* p, int n) {
-  if (n >= L::kWidth) {
-    L::store(v, p);
-    return;
-  }
-  float lanes[L::kWidth];
-  L::store(v, lanes);
-  for (int i = 0; i < n; ++i) p[i] = lanes[i];
-}
-
 struct HalfAngleKernel {
   const RenderView* view = nullptr;    // lights[0] is the light of this pass
   const RenderView* shadow = nullptr;  // with the shadow TF: what attenuates light
@@ -198,7 +181,7 @@ struct HalfAngleKernel {
     p = ray.origin + t * ray.direction;
     active = active & inside<L>(p);
     if (none(active)) return active;
-    index = select(active, (p - V(v.volume.origin)) / V(v.volume.spacing), V(0.0f));
+    index = select(active, v.volume.index_from_world<L>(p), V(0.0f));
     return active & (v.majorant_at<L>(index) > 0.0f);
   }
 };

@@ -226,7 +226,8 @@ void HalfAngleRenderer::render(const Scene& scene, Image& image, RenderStats* st
     last_slices_ = slices.count;
     const vec3 s = slices.axis;
     std::fill(light_.begin(), light_.end(), vec4(1.0f));
-    std::fill(blur_.begin(), blur_.end(), vec4(1.0f));  // the blur swaps the two (diffuse_blur.h)
+    // The blur swaps the two buffers, so both start at the unlit constant (diffuse_blur.h).
+    if (scattering.has_diffuse()) std::fill(blur_.begin(), blur_.end(), vec4(1.0f));
     // Eye pixels, and the slice before which each plane hit is shaded (the
     // number of slices lying before it along s), bucketed.
     bucket_start.assign(std::size_t(slices.count) + 2, 0);

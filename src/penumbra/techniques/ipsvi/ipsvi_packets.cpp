@@ -29,7 +29,7 @@ __attribute__((flatten)) void march_tape(const RenderView& shadow, const Forward
       for (int j = 0; j < n; ++j) lengths[j * W + i] = tape.lengths[j][s];
     }
     const int live = tape.count - first < W ? tape.count - first : W;
-    const MaskV lanes = L::from_bits(live == 32 ? ~0u : (1u << live) - 1u);
+    const MaskV lanes = first_lanes<L>(live);
     OpticalDepthL<L> depth[kMaxSegmentCheckpoints];
     light_segment_depths_lanes<Emission, L>(shadow, sampler, rays, lengths, n, lanes, scattering, depth, samples);
     for (int j = 0; j < n; ++j) {

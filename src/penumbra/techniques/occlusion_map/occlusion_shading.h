@@ -170,7 +170,7 @@ PENUMBRA_HD PENUMBRA_FORCE_INLINE DvrReceiverL<L> dvr_receiver(const VolumeView&
   r.oriented = active & (len > 0.0f) & finite(len);
   if (none(r.oriented)) return r;
   r.normal = select(r.oriented, -g / len, V(0.0f));
-  const V under_at = (world - r.normal * (0.5f * volume.min_spacing()) - V(volume.origin)) / V(volume.spacing);
+  const V under_at = volume.index_from_world<L>(world - r.normal * (0.5f * volume.min_spacing()));
   const typename L::Float under = sampler.template sample<L>(under_at);
   r.value = select(r.oriented & finite(under), max(value, under), value);
   return r;
