@@ -286,36 +286,34 @@ void HalfAngleRenderer::render(const Scene& scene, Image& image, RenderStats* st
       for (int k = 0; k < slices.count; ++k) {
         shade_planes(k);
         const int corners = slice_polygon(view.box, s, slices.position(k), polygon);
+        // Each row of rect r (rows `row_width` long) in parallel: row(first
+        // entry, entries, samples).
+        auto rows = [&](const Rect& r, int row_width, const auto& row) {
+          if (r.x1 <= r.x0) return;
+          parallel_for(r.y0, r.y1, [&](std::int64_t first, std::int64_t last) {
+            std::uint64_t count = 0;
+            for (std::int64_t y = first; y < last; ++y) {
+              row(std::size_t(r.x0) + std::size_t(row_width) * std::size_t(y), r.x1 - r.x0, count);
+            }
+            samples.fetch_add(count, std::memory_order_relaxed);
+          });
+        };
         const Rect er = eye_rect(view.camera, width, height, polygon, corners);
-        if (er.x1 > er.x0) {
-          parallel_for(er.y0, er.y1, [&](std::int64_t first, std::int64_t last) {
-            std::uint64_t count = 0;
-            for (std::int64_t y = first; y < last; ++y) {
-              const std::size_t i = std::size_t(er.x0) + std::size_t(width) * std::size_t(y);
-              if (eye_packets) {
-                count += eye_packets(kernel, eye, k, i, er.x1 - er.x0);
-              } else {
-                eye_slice_row<ScalarLanes>(kernel, sampler, eye, k, i, er.x1 - er.x0, count);
-              }
-            }
-            samples.fetch_add(count, std::memory_order_relaxed);
-          });
-        }
+        rows(er, width, [&](std::size_t i, int count, std::uint64_t& taken) {
+          if (eye_packets) {
+            taken += eye_packets(kernel, eye, k, i, count);
+          } else {
+            eye_slice_row<ScalarLanes>(kernel, sampler, eye, k, i, count, taken);
+          }
+        });
         const Rect lr = light_rect(kernel.projection, polygon, corners);
-        if (lr.x1 > lr.x0) {
-          parallel_for(lr.y0, lr.y1, [&](std::int64_t first, std::int64_t last) {
-            std::uint64_t count = 0;
-            for (std::int64_t y = first; y < last; ++y) {
-              const std::size_t i = std::size_t(lr.x0) + std::size_t(n) * std::size_t(y);
-              if (light_packets) {
-                count += light_packets(kernel, light_rays, k, i, lr.x1 - lr.x0, light_.data());
-              } else {
-                light_slice_row<ScalarLanes>(kernel, sampler, light_rays, k, i, lr.x1 - lr.x0, light_.data(), count);
-              }
-            }
-            samples.fetch_add(count, std::memory_order_relaxed);
-          });
-        }
+        rows(lr, n, [&](std::size_t i, int count, std::uint64_t& taken) {
+          if (light_packets) {
+            taken += light_packets(kernel, light_rays, k, i, count, light_.data());
+          } else {
+            light_slice_row<ScalarLanes>(kernel, sampler, light_rays, k, i, count, light_.data(), taken);
+          }
+        });
         if (scattering.has_diffuse()) {
           blur_after_slice(light_, blur_, n, TexelRect{lr.x0, lr.y0, lr.x1, lr.y1}, lit_area, variance);
           kernel.light = light_.data();
