@@ -1,5 +1,6 @@
 // SIMD unit (cmake/PenumbraSimd.cmake): occlusion-map's soft-shadow marches,
-// 8 or 16 at a time (soft_shadow_batch.h), and DVR mode's samples as packets
+// 8 or 16 at a time (soft_shadow_batch.h), DVR mode's AO grid nodes, and
+// DVR mode's samples as packets
 // of the shared loop (occlusion_shading.h). Everything here is inlined into
 // the flatten functions or named after this unit's target (see
 // backends/cpu/packet_render.h on why).
@@ -27,7 +28,32 @@ __attribute__((flatten)) void march_batch(const OcclusionQueries<2>& queries, fl
   }
 }
 
+__attribute__((flatten)) void ambient_batch(const OcclusionQueries<2>& queries, ValueNormalisation normalise,
+                                             const VolumeView& volume, const float* const xyz[3], int count,
+                                             float* out) {
+  using L = SimdLanes;
+  const AnyVoxelSampler sampler(volume.data, volume.dims, volume.type);
+  for (int i = 0; i < count; i += L::kWidth) {
+    const Vec3V world(L::load(xyz[0] + i), L::load(xyz[1] + i), L::load(xyz[2] + i));
+    const Vec3V index = volume.index_from_world<L>(world);
+    const FloatV value = sampler.sample<L>(index);
+    L::store(dvr_ambient<L>(queries, normalise, volume, sampler, index, world, value, MaskV(true), kDvrGridNode),
+             out + i);
+  }
+}
+
 }  // namespace HWY_NAMESPACE
+
+template <SimdTarget Target>
+void dvr_ambient_batch(const OcclusionQueries<2>& queries, ValueNormalisation normalise, const VolumeView& volume,
+                       const float* const xyz[3], int count, float* out) {
+  static_assert(Target == HWY_NAMESPACE::kThisSimdTarget, "each SIMD unit instantiates its own target only");
+  HWY_NAMESPACE::ambient_batch(queries, normalise, volume, xyz, count, out);
+}
+
+template void dvr_ambient_batch<SimdTarget::PENUMBRA_SIMD_TARGET>(const OcclusionQueries<2>&, ValueNormalisation,
+                                                                  const VolumeView&, const float* const[3], int,
+                                                                  float*);
 
 template <SimdTarget Target>
 void march_soft_shadows(const OcclusionQueries<2>& queries, float t, const SoftShadowQueries& batch, float* out) {

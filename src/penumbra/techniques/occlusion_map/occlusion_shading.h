@@ -11,6 +11,7 @@
 #include "penumbra/techniques/occlusion_map/isosurface_ray.h"
 #include "penumbra/techniques/occlusion_map/occlusion_queries.h"
 #include "penumbra/techniques/occlusion_map/soft_shadow_batch.h"
+#include "penumbra/techniques/sat_common/plane_caches.h"
 
 namespace penumbra {
 
@@ -35,6 +36,9 @@ template <int K> struct OcclusionShadingSetup {
   ShadowMode shadows = ShadowMode::Soft;
   bool ambient_occlusion = true;
   bool ao_on_lights = true;
+  // Soft shadows on the opaque planes, per light and plane where the volume
+  // can shadow them (occlusion_map.cpp); lights without a grid march.
+  PlaneCachesView plane_shadows;
 
   // The device copy (backends/device.h): the views and the pyramid mirrored,
   // the setup itself copied for this frame. The iso view's occupancy follows
@@ -45,6 +49,7 @@ template <int K> struct OcclusionShadingSetup {
     d.lit_view = m.view(*lit_view);
     d.iso_view = m.view(*iso_view, Mirror::Cells::PerFrame);
     d.queries.pyramid = queries.pyramid.on_device(m);
+    d.plane_shadows = plane_shadows.on_device(m);
     return m.frame(&d, 1, "the occlusion shading setup");
   }
 };
@@ -80,6 +85,14 @@ template <int K, class Sampler> struct SurfaceVisibility {
       visible *= s.queries.soft_shadow(p, normal, ls.to_light, ls.distance, spread, s.normalise(s.iso), own_value);
     }
     return vec3(visible);
+  }
+  // A point on opaque plane `plane` (this visibility's normal is the plane's,
+  // its own value negative): the plane's soft-shadow grid where it has one.
+  PENUMBRA_HD vec3 plane(int light, int plane, vec3 p, const LightSample& ls) const {
+    const OcclusionShadingSetup<K>& s = *setup;
+    if (s.shadows != ShadowMode::Soft || !s.plane_shadows.has(light, plane)) return (*this)(light, p, ls);
+    if (deferred && light != deferred->light) return vec3(0.0f);
+    return vec3(ambient_occ * s.plane_shadows.sample(light, plane, p));
   }
 };
 
@@ -125,8 +138,7 @@ template <int K, class Sampler> struct IsosurfaceShader {
     const SamplePoint sample{p, index, s.iso, s.iso_color, 0.0f, ray_dir};
     const vec3 ambient = s.lit_view->material.albedo * s.iso_color * (s.ambient * ao);
     if (!deferred) return lighting.sample(sample) + ambient;
-    deferred->defer_lights(s.lit_view->light_count, [&] { return lighting.sample(sample); });
-    return ambient;
+    return ambient + deferred->defer_lights(s.lit_view->light_count, [&] { return lighting.sample(sample); });
   }
 
   PENUMBRA_HD vec3 plane(const PlaneHit& h, SoftShadowQueries* deferred = nullptr) const {
@@ -141,16 +153,15 @@ template <int K, class Sampler> struct IsosurfaceShader {
         Shading::Phong};
     const vec3 ambient = plane.color * (s.ambient * ao);
     if (!deferred) return lighting.plane(h) + ambient;
-    deferred->defer_lights(s.lit_view->light_count, [&] { return lighting.plane(h); });
-    return ambient;
+    return ambient + deferred->defer_lights(s.lit_view->light_count, [&] { return lighting.plane(h); });
   }
 };
 
 // What a DVR sample receives light on, as DVR mode reads the occlusion map:
 // the unit normal away from the denser side (the negated gradient) and the
-// value under it (half a voxel back along the normal, or the sample's own
-// where that is larger). Not oriented in homogeneous regions (nor in lanes
-// that are off). For one lane or a packet.
+// value under it (`depth` voxels back along the normal, half a voxel for a
+// sample, or the sample's own where that is larger). Not oriented in
+// homogeneous regions (nor in lanes that are off). For one lane or a packet.
 template <class L> struct DvrReceiverL {
   typename L::Vec3 normal{0.0f};
   typename L::Float value{0.0f};  // data units
@@ -161,7 +172,7 @@ template <class L, class Sampler>
 PENUMBRA_HD PENUMBRA_FORCE_INLINE DvrReceiverL<L> dvr_receiver(const VolumeView& volume, const Sampler& sampler,
                                                                const typename L::Vec3& index,
                                                                const typename L::Vec3& world, typename L::Float value,
-                                                               typename L::Mask active) {
+                                                               typename L::Mask active, float depth = 0.5f) {
   using V = typename L::Vec3;
   DvrReceiverL<L> r;
   r.value = value;
@@ -170,7 +181,7 @@ PENUMBRA_HD PENUMBRA_FORCE_INLINE DvrReceiverL<L> dvr_receiver(const VolumeView&
   r.oriented = active & (len > 0.0f) & finite(len);
   if (none(r.oriented)) return r;
   r.normal = select(r.oriented, -g / len, V(0.0f));
-  const V under_at = volume.index_from_world<L>(world - r.normal * (0.5f * volume.min_spacing()));
+  const V under_at = volume.index_from_world<L>(world - r.normal * (depth * volume.min_spacing()));
   const typename L::Float under = sampler.template sample<L>(under_at);
   r.value = select(r.oriented & finite(under), max(value, under), value);
   return r;
@@ -180,6 +191,49 @@ PENUMBRA_HD DvrReceiver dvr_receiver(const VolumeView& volume, const Sampler& sa
                                      float value) {
   return dvr_receiver<ScalarLanes>(volume, sampler, index, world, value, true);
 }
+
+// Where dvr_ambient is taken: at a DVR sample (the paper's Fig. 11), or at a
+// node of the AO grid (occlusion_map.cpp), which stands for the samples
+// within a voxel of it. Samples that show lie in a surface's ramp, above the
+// value of the air beside it; a node in that air queried with its own value
+// came out darker than they (balls over a slab: rmse 2.7e-2 grid against per
+// sample at half a voxel, 6.9e-3 at one voxel; dvr_shadows_test.cpp), so a
+// node's receiver value is taken one voxel under it.
+struct DvrAmbientAt {
+  float under_depth = 0.5f;  // voxels under the point of the receiver's value
+  float unoriented = 1.0f;   // the AO where the data is homogeneous
+};
+inline constexpr DvrAmbientAt kDvrSample{0.5f, 1.0f};
+// The grid marks homogeneous nodes with -1 and fills them from their neighbours.
+inline constexpr DvrAmbientAt kDvrGridNode{1.0f, -1.0f};
+
+// DVR mode's ambient occlusion at a point of the volume (index and world
+// position, the data value there): the four-level query from the receiver
+// above, at.unoriented where the data is homogeneous (no direction to look
+// in) and 1 on lanes that are off. The same per sample (dvr_ao=sample) and
+// per node of the AO grid (dvr_ao=grid), for one lane or a packet.
+template <class L, int K, class Sampler>
+PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Float dvr_ambient(const OcclusionQueries<K>& queries,
+                                                                ValueNormalisation normalise, const VolumeView& volume,
+                                                                const Sampler& sampler, const typename L::Vec3& index,
+                                                                const typename L::Vec3& world, typename L::Float value,
+                                                                typename L::Mask active, DvrAmbientAt at = kDvrSample) {
+  using F = typename L::Float;
+  const DvrReceiverL<L> r = dvr_receiver<L>(volume, sampler, index, world, value, active, at.under_depth);
+  const F homogeneous = select(active, F(at.unoriented), F(1.0f));
+  if (none(r.oriented)) return homogeneous;
+  const F ao = queries.template ambient_lanes<L>(world, r.normal, normalise(r.value), r.oriented);
+  return select(r.oriented, ao, homogeneous);
+}
+
+// dvr_ambient at `count` AO grid nodes (world x, y, z arrays, padded to 16;
+// kDvrGridNode) as SIMD packets of Target, two moments
+// (occlusion_map_packets.cpp).
+template <SimdTarget Target>
+void dvr_ambient_batch(const OcclusionQueries<2>& queries, ValueNormalisation normalise, const VolumeView& volume,
+                       const float* const xyz[3], int count, float* out);
+using DvrAmbientBatch = void (*)(const OcclusionQueries<2>&, ValueNormalisation, const VolumeView&,
+                                 const float* const[3], int, float*);
 
 // DVR mode's soft shadow at a world point p toward `light`: the iso mode's
 // march (OcclusionQueries::soft_shadow, every occluder above the iso-value)
@@ -205,6 +259,16 @@ PENUMBRA_HD SoftShadowQuery dvr_soft_shadow_query(const OcclusionQueries<K>& que
   }
   return q;
 }
+// The soft shadow at a node of a plane's grid (occlusion_map.cpp): the plane
+// seen from the light's side (the side a lit pixel shows), nothing of the
+// volume under it; what SurfaceVisibility marches from a plane point.
+template <int K>
+PENUMBRA_HD SoftShadowQuery plane_soft_shadow_query(const OcclusionQueries<K>& queries, const Light& light,
+                                                    const Plane& plane, vec3 p) {
+  const LightSample ls = sample_light(light, p);
+  const vec3 n = glm::normalize(glm::dot(plane.normal, ls.to_light) >= 0.0f ? plane.normal : -plane.normal);
+  return SoftShadowQuery{p, n, ls.to_light, ls.distance, queries.light_spread(light, p), -1.0f};
+}
 template <int K>
 PENUMBRA_HD float soft_shadow(const OcclusionQueries<K>& queries, const SoftShadowQuery& q, float t) {
   return queries.soft_shadow(q.p, q.n, q.to_light, q.distance, q.spread, t, q.own);
@@ -228,26 +292,28 @@ struct DvrVisibility {
 };
 
 // DVR mode (Fig. 11): the same ambient occlusion for every DVR sample, with
-// the sample's value half a voxel up its gradient as the query, and with soft
-// shadows from each light's grid (none: local lighting, as in the paper's
-// figure). Planes are shaded as in iso mode, their soft shadows marched.
-// Samples are lit one at a time or as CPU packets (two moments; the packets
-// read the volume through AnyVoxelSampler, occlusion_map_packets.cpp).
+// the sample's value half a voxel up its gradient as the query (dvr_ambient),
+// either evaluated per sample or read trilinearly from a grid of it
+// (`ambient_grid` times `ambient_scale`; data == nullptr: per sample), and with soft shadows from
+// each light's grid (none: local lighting, as in the paper's figure). Planes
+// are shaded as in iso mode, their soft shadows marched. Samples are lit one
+// at a time or as CPU packets (two moments; the packets read the volume
+// through AnyVoxelSampler, occlusion_map_packets.cpp).
 template <int K, class Sampler> struct DvrOcclusionLighting {
   const OcclusionShadingSetup<K>* setup;
   Sampler sampler;
   Shading shading;
   const VolumeView* shadow_grids = nullptr;
+  VolumeView ambient_grid;
+  float ambient_scale = 1.0f;  // AO per grid unit (kUnorm16Step for 16-bit texels)
 
   template <class L>
   PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Float ambient_at(const SamplePointL<L>& p,
                                                                  typename L::Mask active) const {
-    using F = typename L::Float;
     const OcclusionShadingSetup<K>& s = *setup;
-    if (!s.ambient_occlusion) return F(1.0f);
-    const DvrReceiverL<L> r = dvr_receiver<L>(s.lit_view->volume, sampler, p.index, p.world, p.value, active);
-    if (none(r.oriented)) return F(1.0f);  // homogeneous: no direction to look in
-    return s.queries.template ambient_lanes<L>(p.world, r.normal, s.normalise(r.value), r.oriented);
+    if (!s.ambient_occlusion) return typename L::Float(1.0f);
+    if (ambient_grid.data) return sample_world<L>(ambient_grid, p.world) * ambient_scale;
+    return dvr_ambient<L>(s.queries, s.normalise, s.lit_view->volume, sampler, p.index, p.world, p.value, active);
   }
 
   template <class L>

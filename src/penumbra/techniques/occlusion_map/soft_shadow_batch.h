@@ -45,15 +45,22 @@ struct SoftShadowQueries {
 
   // Shades a point once per light with only that light visible (shade()
   // returns the point's light from the lights, without the ambient term) and
-  // keeps each recorded march's share.
-  template <class Shade> PENUMBRA_HD void defer_lights(int light_count, Shade&& shade) {
+  // keeps each recorded march's share. Returns the sum of the shares that
+  // recorded no march (a light read from a plane's shadow grid, or none).
+  template <class Shade> PENUMBRA_HD vec3 defer_lights(int light_count, Shade&& shade) {
+    vec3 known(0.0f);
     for (int i = 0; i < light_count; ++i) {
       light = i;
       const int before = count;
       const vec3 share = shade();
-      if (count > before) shares[before] = share;
+      if (count > before) {
+        shares[before] = share;
+      } else {
+        known += share;
+      }
     }
     light = -1;
+    return known;
   }
 };
 
