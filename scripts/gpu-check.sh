@@ -39,6 +39,10 @@ args=()
 for t in "${techniques[@]}"; do args+=(--technique "$t"); done
 json=$(timeout 240 "$bin/penumbra" --device cuda bench "$scenes/gpu-bench-512.json" "${args[@]}" --frames 10)
 bench=$?
+# occlusion-map's DVR mode (the row after its iso mode's).
+json+=$'\n'$(timeout 60 "$bin/penumbra" --device cuda bench "$scenes/gpu-bench-512.json" --technique occlusion-map \
+  --param occlusion-map.mode=dvr --frames 10)
+[ $? -eq 0 ] || bench=1
 # pathtrace (single scattering, 8 paths per pixel): its samples/s are volume lookups/s.
 json+=$'\n'$(timeout 90 "$bin/penumbra" --device cuda bench "$scenes/gpu-bench-512.json" --technique pathtrace \
   --param pathtrace.spp=8 --param pathtrace.min_spp=8 --param pathtrace.progress=false --frames 3)

@@ -204,6 +204,21 @@ ParameterValues device_params(const TechniqueInfo& info) {
   return params;
 }
 
+// The settings each technique is checked with on the device: its defaults,
+// and for occlusion-map also DVR mode (its grids: shadows per light, the AO
+// grid, the planes'), with the AO per sample as well.
+std::vector<std::pair<std::string, ParameterValues>> device_variants(const TechniqueInfo& info) {
+  std::vector<std::pair<std::string, ParameterValues>> variants{{"", device_params(info)}};
+  if (info.name == "occlusion-map") {
+    ParameterValues dvr = device_params(info);
+    dvr.set("mode", std::string("dvr"));
+    variants.emplace_back(" (dvr)", dvr);
+    dvr.set("dvr_ao", std::string("sample"));
+    variants.emplace_back(" (dvr, AO per sample)", dvr);
+  }
+  return variants;
+}
+
 Image render_on(Device device, const Scene& scene, const TechniqueInfo& info, const ParameterValues& params,
                 RenderStats& stats) {
   set_device_mode(device == Device::Cuda ? DeviceMode::Cuda : DeviceMode::Cpu);
@@ -230,14 +245,15 @@ TEST(CudaDevice, EveryTechniqueWithACudaPathMatchesTheCpu) {
     for (const TechniqueInfo& info : technique_registry()) {
       // pathtrace's images are estimates: PathtraceAgreesWithinItsStandardError.
       if (!info.has_cuda_path || info.name == "pathtrace") continue;
+      for (const auto& [variant, settings] : device_variants(info)) {
       for (bool cache : {false, true}) {
-        ParameterValues params = device_params(info);
+        ParameterValues params = settings;
         if (info.parameters.find("shadow_cache")) {
           params.set("shadow_cache", cache);
         } else if (cache) {
           continue;
         }
-        SCOPED_TRACE(ds.name + " x " + info.name + (cache ? " (cached)" : ""));
+        SCOPED_TRACE(ds.name + " x " + info.name + variant + (cache ? " (cached)" : ""));
         RenderStats cpu_stats, gpu_stats;
         const Image cpu = render_on(Device::Cpu, ds.scene, info, params, cpu_stats);
         const Image gpu = render_on(Device::Cuda, ds.scene, info, params, gpu_stats);
@@ -247,6 +263,7 @@ TEST(CudaDevice, EveryTechniqueWithACudaPathMatchesTheCpu) {
         EXPECT_LE(de.mean, kMeanDe);
         EXPECT_LE(de.p99, kP99De);
         EXPECT_NEAR(double(gpu_stats.samples), double(cpu_stats.samples), 1e-3 * double(cpu_stats.samples));
+      }
       }
     }
   }
@@ -307,16 +324,17 @@ TEST(CudaDevice, LightMovesAndTfChangesMatchAFreshRender) {
   edited.set_transfer_function(tf);
   for (const TechniqueInfo& info : technique_registry()) {
     if (!info.has_cuda_path) continue;
-    SCOPED_TRACE(info.name);
-    const ParameterValues params = device_params(info);
-    auto live = info.create();
-    Image image;
-    for (const Scene* s : std::initializer_list<const Scene*>{&scene, &moved, &edited}) {
-      live->prepare(*s, params);
-      live->render(*s, image);
-      RenderStats stats;
-      const Image fresh = render_on(Device::Cuda, *s, info, params, stats);
-      EXPECT_EQ(rmse(image, fresh), 0.0) << "a stale device mirror";
+    for (const auto& [variant, params] : device_variants(info)) {
+      SCOPED_TRACE(info.name + variant);
+      auto live = info.create();
+      Image image;
+      for (const Scene* s : std::initializer_list<const Scene*>{&scene, &moved, &edited}) {
+        live->prepare(*s, params);
+        live->render(*s, image);
+        RenderStats stats;
+        const Image fresh = render_on(Device::Cuda, *s, info, params, stats);
+        EXPECT_EQ(rmse(image, fresh), 0.0) << "a stale device mirror";
+      }
     }
   }
 }

@@ -349,36 +349,37 @@ class OcclusionMap final : public Technique {
       render_isosurface_image(setup, image, stats);
       return;
     }
-    if (active_device() == Device::Cuda) note_cpu_fallback("occlusion-map in mode dvr");
     const Shading shading = scene.material().shading;
     const VolumeView* grids = dvr_shadows_.built() ? dvr_shadows_.views() : nullptr;
     const VolumeView ao_grid = ambient_grid_ ? ambient_grid_->view() : VolumeView{};
-    if constexpr (K == 2) {
-      // Packets (occlusion_map_packets.cpp) read the volume through
-      // AnyVoxelSampler; one lighting type serves every voxel type.
-      if (dvr_packets_fit(setup.queries, lit)) {
-        const AnyVoxelSampler any(lit.volume.data, lit.volume.dims, lit.volume.type);
-        render_image(
-            lit, [&](const auto&) { return DvrOcclusionLighting<2, AnyVoxelSampler>{&setup, any, shading, grids, ao_grid, kUnorm16Step}; },
-            image, stats);
-        return;
-      }
+    // The CUDA device (occlusion_map_device.cu) and the packets
+    // (occlusion_map_packets.cpp) read the volume through AnyVoxelSampler;
+    // one lighting type serves every voxel type.
+    bool any_voxel = active_device() == Device::Cuda;
+    if constexpr (K == 2) any_voxel = any_voxel || dvr_packets_fit(setup.queries, lit);
+    if (any_voxel) {
+      const AnyVoxelSampler any(lit.volume.data, lit.volume.dims, lit.volume.type);
+      const DvrOcclusionLighting<K, AnyVoxelSampler> lighting{&setup, any, shading, grids, ao_grid, kUnorm16Step};
+      render_image(lit, [&](const auto&) { return lighting; }, image, stats);
+      return;
     }
     render_image(
         lit,
         [&](const auto& sampler) {
-          return DvrOcclusionLighting<K, std::decay_t<decltype(sampler)>>{&setup, sampler, shading, grids, ao_grid, kUnorm16Step};
+          using Sampler = std::decay_t<decltype(sampler)>;
+          return DvrOcclusionLighting<K, Sampler>{&setup, sampler, shading, grids, ao_grid, kUnorm16Step};
         },
         image, stats);
   }
 
   // Whether DVR mode's samples can be lit as packets: a SIMD target for this
   // view, and 32-bit gather offsets that reach every node of the pyramid and
-  // every byte of the shadow grids.
+  // every byte of the shadow grids and the AO grid.
   bool dvr_packets_fit(const OcclusionQueries<2>& queries, const RenderView& view) const {
     if (packet_target(view) == SimdTarget::Scalar || !queries.packets_fit()) return false;
     constexpr std::uint64_t limit = (std::uint64_t(1) << 31) - 64;
     const ivec3 d = dvr_shadows_.dims();
+    if (ambient_grid_ && ambient_grid_->total_bytes() >= limit) return false;
     return !dvr_shadows_.built() || std::uint64_t(d.x) * std::uint64_t(d.y) * std::uint64_t(d.z) * 4 < limit;
   }
 

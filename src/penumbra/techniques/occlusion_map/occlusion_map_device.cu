@@ -1,7 +1,7 @@
 // CUDA unit (cmake/PenumbraCuda.cmake): occlusion-map's isosurface image on
 // the device, through the shared launch (backends/cuda/launch.cuh) and the
-// per-pixel functor of the CPU tile loop (isosurface_render.h). DVR mode
-// renders on the CPU.
+// per-pixel functor of the CPU tile loop (isosurface_render.h); DVR mode
+// through the shared loop's device path with DvrOcclusionLighting.
 #include "penumbra/backends/cuda/launch.cuh"
 #include "penumbra/techniques/occlusion_map/isosurface_render.h"
 
@@ -38,3 +38,6 @@ template std::uint64_t render_isosurface_device<2>(const OcclusionShadingSetup<2
 template std::uint64_t render_isosurface_device<4>(const OcclusionShadingSetup<4>&, Image&);
 
 }  // namespace penumbra
+
+PENUMBRA_INSTANTIATE_DEVICE(DvrOcclusionLighting<2, AnyVoxelSampler>);
+PENUMBRA_INSTANTIATE_DEVICE(DvrOcclusionLighting<4, AnyVoxelSampler>);

@@ -296,9 +296,10 @@ struct DvrVisibility {
 // either evaluated per sample or read trilinearly from a grid of it
 // (`ambient_grid` times `ambient_scale`; data == nullptr: per sample), and with soft shadows from
 // each light's grid (none: local lighting, as in the paper's figure). Planes
-// are shaded as in iso mode, their soft shadows marched. Samples are lit one
-// at a time or as CPU packets (two moments; the packets read the volume
-// through AnyVoxelSampler, occlusion_map_packets.cpp).
+// are shaded as in iso mode, their soft shadows read from their grids or
+// marched. Samples are lit one at a time, as CPU packets (two moments; the
+// packets read the volume through AnyVoxelSampler, occlusion_map_packets.cpp)
+// or on the CUDA device (through AnyVoxelSampler, occlusion_map_device.cu).
 template <int K, class Sampler> struct DvrOcclusionLighting {
   const OcclusionShadingSetup<K>* setup;
   Sampler sampler;
@@ -306,6 +307,18 @@ template <int K, class Sampler> struct DvrOcclusionLighting {
   const VolumeView* shadow_grids = nullptr;
   VolumeView ambient_grid;
   float ambient_scale = 1.0f;  // AO per grid unit (kUnorm16Step for 16-bit texels)
+
+  // The device copy (backends/device.h): the setup, the grids and the
+  // sampler's voxels mirrored (AnyVoxelSampler only).
+  template <class Mirror> DvrOcclusionLighting on_device(Mirror& m) const {
+    DvrOcclusionLighting d = *this;
+    const VolumeView volume = m.volume(setup->lit_view->volume, true, "the volume");
+    d.sampler = Sampler(volume.data, volume.dims, volume.type);
+    d.setup = setup->on_device(m);
+    if (shadow_grids) d.shadow_grids = m.volumes(shadow_grids, m.light_count(), "the DVR shadow grids");
+    if (ambient_grid.data) d.ambient_grid = m.volume(ambient_grid, false, "the DVR ambient occlusion grid");
+    return d;
+  }
 
   template <class L>
   PENUMBRA_HD PENUMBRA_FORCE_INLINE typename L::Float ambient_at(const SamplePointL<L>& p,
@@ -331,5 +344,7 @@ template <int K, class Sampler> struct DvrOcclusionLighting {
 };
 
 PENUMBRA_PACKET_LIGHTING(DvrOcclusionLighting<2, AnyVoxelSampler>);
+PENUMBRA_DEVICE_LIGHTING(DvrOcclusionLighting<2, AnyVoxelSampler>);
+PENUMBRA_DEVICE_LIGHTING(DvrOcclusionLighting<4, AnyVoxelSampler>);
 
 }  // namespace penumbra
