@@ -6,6 +6,7 @@
 #include "penumbra/backends/cpu/packets.h"
 #include "penumbra/base/error.h"
 #include "penumbra/techniques/registry.h"
+#include "penumbra/volume/procedural.h"
 #include "test_scene.h"
 
 #include <gtest/gtest.h>
@@ -152,12 +153,6 @@ TEST(OcclusionMapDvr, PacketGridsMatchTheScalarMarch) {
   std::printf("[occlusion-map dvr] packet grids checked at %d widths\n", widths);
 }
 
-// DVR samples are lit as packets of the shared loop where the CPU has them
-// (ambient occlusion, the shadow grids' lookups, Phong normals): the scalar
-// path's image on a smooth, semi-transparent volume that is not two-valued
-// (Marschner-Lobb) and on balls over a slab (where a packet mixes samples
-// whose AO regions reach occluders with samples whose regions do not), at
-// two AO combinations.
 // Two DVR scenes under a Phong-shaded directional light: the Marschner-Lobb
 // field under a semi-transparent step TF, and two balls over a slab under a
 // step TF of alpha 0.6.
@@ -196,8 +191,13 @@ Scene balls_over_slab(int image_size) {
   return balls;
 }
 
-// DVR samples as packets against one lane at a time, with the AO per sample
-// and from its grid (whose nodes are evaluated as packets too).
+// DVR samples are lit as packets of the shared loop where the CPU has them
+// (ambient occlusion, the shadow grids' lookups, Phong normals): the scalar
+// path's image on a smooth, semi-transparent volume that is not two-valued
+// (Marschner-Lobb) and on balls over a slab (where a packet mixes samples
+// whose AO regions reach occluders with samples whose regions do not), with
+// the AO per sample at two combinations and from its grid (whose nodes are
+// evaluated as packets too).
 TEST(OcclusionMapDvr, PacketSamplesMatchTheScalarPath) {
   const Scene wave = wave_scene(64);
   const Scene balls = balls_over_slab(64);
@@ -309,7 +309,8 @@ TEST(OcclusionMapDvr, AmbientGridFollowsThePerSampleAmbient) {
 // The AO grid depends on the data and the AO's own parameters (ao_offset,
 // ao_combine, the pyramid's): the iso-value, the TF, the camera and the
 // lights keep it (the AO's query is each sample's own value); per-sample AO
-// or no AO frees it. 16-bit, one texel per voxel.
+// or no AO frees it. 16-bit, one texel per voxel. The light's soft-shadow
+// grid does not depend on the AO's settings.
 TEST(OcclusionMapDvr, AmbientGridRebuildsForDataAndAoParametersOnly) {
   Scene scene = shadowed_ball(16);
   const TechniqueInfo& info = find_technique("occlusion-map");
@@ -352,6 +353,23 @@ TEST(OcclusionMapDvr, AmbientGridRebuildsForDataAndAoParametersOnly) {
   technique->prepare(scene, params);
   EXPECT_EQ(technique->rebuilds(), 6u);
   EXPECT_EQ(technique->aux_bytes() + 48u * 48u * 48u * sizeof(std::uint16_t), with_grid);
+
+  // With soft shadows the light's grid is built once: the AO's settings keep it.
+  params.set("ambient_occlusion", true);
+  params.set("shadows", std::string("soft"));
+  technique->prepare(scene, params);
+  EXPECT_EQ(technique->rebuilds(), 8u);  // the light's grid and the AO grid
+  params.set("dvr_ao", std::string("sample"));
+  technique->prepare(scene, params);
+  EXPECT_EQ(technique->rebuilds(), 8u);
+  params.set("dvr_ao", std::string("grid"));
+  technique->prepare(scene, params);
+  EXPECT_EQ(technique->rebuilds(), 9u);  // the AO grid only
+
+  // New data: the pyramid, the light's grid and the AO grid.
+  scene.set_volume(make_procedural_volume("shell", ivec3(48)));
+  technique->prepare(scene, params);
+  EXPECT_EQ(technique->rebuilds(), 12u);
 }
 
 // Hard shadows are iso-test rays from a surface: mode dvr names the parameter.

@@ -142,7 +142,7 @@ class OcclusionMap final : public Technique {
       return;
     }
     ParameterValues key = params;
-    for (const char* name : {"ambient_occlusion", "ao_combine", "ao_lights"}) {
+    for (const char* name : {"ambient_occlusion", "ao_combine", "ao_lights", "dvr_ao"}) {
       key.set(name, params.table().at(name).default_value);
     }
     const std::vector<Light>& lights = scene.lights();

@@ -436,6 +436,7 @@ void floor_grid_against_march(const char* name, const Scene& scene) {
     EXPECT_GT(dark, 100) << name << " " << mode;
     EXPECT_LT(sum / pixels, 0.0045) << name << " " << mode;
     EXPECT_LT(worst, 0.125) << name << " " << mode;
+    EXPECT_GT(worst, 1e-3) << name << " " << mode << ": the floor did not read a grid";
   }
 }
 
@@ -448,6 +449,55 @@ TEST(OcclusionMapRender, FloorShadowGridsMatchTheMarchAtEachPixel) {
   for (const auto& [name, scene] : {std::pair{"balls", lit_balls(64)}, std::pair{"slab", slab}}) {
     floor_grid_against_march(name, scene);
   }
+}
+
+// The floor's grids are rebuilt whenever what their marches read changes
+// (they are not counted in rebuilds()): after each change, a technique that
+// kept its state renders what a fresh one does.
+TEST(OcclusionMapRender, FloorGridsFollowEveryChangeOfWhatTheirMarchReads) {
+  Scene scene = lit_balls(32);
+  const TechniqueInfo& info = find_technique("occlusion-map");
+  ParameterValues params(info.parameters);
+  params.set("iso_value", 0.5);
+  auto live = info.create();
+  Image image;
+  const auto expect_fresh = [&](const char* change) {
+    live->prepare(scene, params);
+    live->render(scene, image);
+    auto fresh = info.create();
+    Image expected;
+    fresh->prepare(scene, params);
+    fresh->render(scene, expected);
+    EXPECT_EQ(rmse(image, expected), 0.0) << "after " << change;
+  };
+  expect_fresh("the first frame");
+  params.set("iso_value", 0.4);
+  expect_fresh("an iso-value change");
+  params.set("ao_offset", 3.0);
+  expect_fresh("an ao_offset change");
+  params.set("light_size_deg", 8.0);
+  expect_fresh("a light_size_deg change");
+  params.set("kernel_size", 3.0);
+  expect_fresh("a kernel_size change");
+  Light light = scene.lights()[0];
+  light.direction = glm::normalize(vec3(-0.4f, 0.5f, -1.0f));
+  scene.set_lights({light});
+  expect_fresh("a light move");
+  params.set("light_size_deg", -1.0);
+  light = testing::as_distant(light, 6.0f);
+  scene.set_lights({light});
+  expect_fresh("a distant light");
+  light.angle_deg = 10.0f;
+  scene.set_lights({light});
+  expect_fresh("a light size change");
+  Plane floor = scene.planes()[0];
+  floor.point.z -= 3.0f;
+  scene.set_planes({floor});
+  expect_fresh("a plane move");
+  scene.set_volume(field_volume(48, [](vec3 p) { return antialiased_solid(glm::length(p) - 10.0f); }));
+  expect_fresh("new data");
+  params.set("mode", std::string("dvr"));
+  expect_fresh("mode dvr");
 }
 
 // Soft shadows approach hard ones as the light shrinks: the image difference

@@ -122,7 +122,8 @@ template <int K, class Sampler> struct IsosurfaceShader {
   }
 
   // `deferred`: soft shadows deferred to packets (soft_shadow_batch.h); the
-  // result is then the ambient term only, the lights' shares are recorded.
+  // result is then the ambient term and the shares of lights that recorded no
+  // march (none, or a plane's shadow grid); the others' shares are recorded.
   PENUMBRA_HD vec3 surface(vec3 p, vec3 ray_dir, SoftShadowQueries* deferred = nullptr) const {
     const OcclusionShadingSetup<K>& s = *setup;
     const VolumeView& volume = s.iso_view->volume;
@@ -292,10 +293,10 @@ struct DvrVisibility {
 };
 
 // DVR mode (Fig. 11): the same ambient occlusion for every DVR sample, with
-// the sample's value half a voxel up its gradient as the query (dvr_ambient),
-// either evaluated per sample or read trilinearly from a grid of it
-// (`ambient_grid` times `ambient_scale`; data == nullptr: per sample), and with soft shadows from
-// each light's grid (none: local lighting, as in the paper's figure). Planes
+// the value under it as the query (dvr_ambient: half a voxel at a sample, one
+// at a grid node), either evaluated per sample or read trilinearly from a
+// grid of it (`ambient_grid` times `ambient_scale`; data == nullptr: per
+// sample), and with soft shadows from each light's grid (none: local lighting, as in the paper's figure). Planes
 // are shaded as in iso mode, their soft shadows read from their grids or
 // marched. Samples are lit one at a time, as CPU packets (two moments; the
 // packets read the volume through AnyVoxelSampler, occlusion_map_packets.cpp)
