@@ -3,14 +3,17 @@
 // nothing, step independence through opacity correction, early ray
 // termination and clip planes.
 #include "penumbra/render/lighting.h"
+#include "penumbra/render/majorant_grid.h"
 #include "penumbra/render/march.h"
 #include "penumbra/render/render_loop.h"
+#include "penumbra/render/sample_cursor.h"
 #include "penumbra/render/scene_resources.h"
 #include "test_scene.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
 namespace penumbra {
 namespace {
@@ -94,6 +97,83 @@ TEST(March, RaysThroughEmptySpaceTakeNoSamples) {
   march_transmittance(v, through, kInfinity, 1.0f, hit);
   EXPECT_GT(hit.samples, 0u);
   EXPECT_LT(float(hit.samples), v.box.extent().x / v.step);
+}
+
+// The cursor, brute force: along rays in every direction, it gives exactly
+// the samples of the grid whose position lies in an occupied macrocell, in
+// order, for an occupancy of large blocks (long runs and empty cubes to
+// jump), a ball and scattered single cells. Only a sample within rounding of a cell
+// face may go either way.
+TEST(March, CursorTakesExactlyTheSamplesInOccupiedCells) {
+  Scene scene = procedural_scene("spheres", ivec3(128), 32);
+  SceneResources resources;
+  resources.update(scene);
+  RenderView v = resources.view(scene);
+  const ivec3 cells = v.macrocells.dims;
+  const int size = v.macrocells.cell_size;
+  ASSERT_EQ(cells, ivec3(16));
+  std::vector<float> majorant(std::size_t(cells.x) * cells.y * cells.z, 0.0f);
+  auto at = [&](ivec3 c) { return std::size_t(c.x + cells.x * (c.y + cells.y * c.z)); };
+  Pcg32 pick(11);
+  for (int z = 0; z < cells.z; ++z)
+    for (int y = 0; y < cells.y; ++y)
+      for (int x = 0; x < cells.x; ++x) {
+        const bool block = x >= 2 && x <= 9 && y >= 1 && y <= 12 && z >= 3 && z <= 8;
+        const bool ball = glm::length(vec3(x, y, z) - vec3(11.5f)) < 4.0f;
+        const bool single = pick.next_float() < 0.05f;
+        majorant[at(ivec3(x, y, z))] = (block || ball || single) ? 1.0f : 0.0f;
+      }
+  const std::vector<std::uint8_t> distances = empty_space_distance(majorant, cells);
+  v.majorants = majorant.data();
+  v.empty_distance = distances.data();
+  auto occupied_at = [&](vec3 p, float& face) {
+    const vec3 q = p / float(size);
+    const vec3 f = q - glm::floor(q);
+    face = glm::min(glm::min(glm::min(f.x, 1.0f - f.x), glm::min(f.y, 1.0f - f.y)), glm::min(f.z, 1.0f - f.z));
+    const ivec3 c = glm::clamp(ivec3(glm::floor(q)), ivec3(0), cells - 1);
+    return majorant[at(c)] > 0.0f;
+  };
+  Pcg32 rng(5);
+  int rays = 0, taken = 0, skipped = 0, ambiguous = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    const vec3 target = v.box.lower + vec3(rng.next_float(), rng.next_float(), rng.next_float()) * v.box.extent();
+    const vec3 dir = glm::normalize(vec3(rng.next_float() - 0.5f, rng.next_float() - 0.5f, rng.next_float() - 0.5f));
+    const Ray ray{target - 300.0f * dir, dir};
+    const Interval iv = intersect_box(ray, v.box, 0.0f, kInfinity);
+    if (iv.empty()) continue;
+    ++rays;
+    const float step = trial % 3 == 0 ? 0.37f : (trial % 3 == 1 ? 1.0f : 2.3f);
+    const SampleGrid grid(iv, step, rng.next_float());
+    std::vector<int> got;
+    SampleCursor cursor(v, ray, grid);
+    int k;
+    float t;
+    while (cursor.next(k, t)) {
+      ASSERT_FLOAT_EQ(t, grid.position(k));
+      if (!got.empty()) {
+        ASSERT_GT(k, got.back());
+      }
+      got.push_back(k);
+    }
+    std::size_t next = 0;
+    for (int j = 0; j < grid.count; ++j) {
+      float face = 0.0f;
+      const bool want = occupied_at(v.volume.index_from_world(ray.origin + grid.position(j) * ray.direction), face);
+      const bool has = next < got.size() && got[next] == j;
+      if (has) ++next;
+      if (face < 2e-5f) {
+        ++ambiguous;
+        continue;
+      }
+      ASSERT_EQ(has, want) << "trial " << trial << " sample " << j << " of " << grid.count;
+      (want ? taken : skipped) += 1;
+    }
+    ASSERT_EQ(next, got.size());
+  }
+  EXPECT_GT(rays, 300);
+  EXPECT_GT(taken, 10000);
+  EXPECT_GT(skipped, 10000);
+  EXPECT_LT(ambiguous, (taken + skipped) / 1000) << taken << " taken, " << skipped << " skipped";
 }
 
 TEST(March, SkippingChangesNoPixel) {
