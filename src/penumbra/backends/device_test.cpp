@@ -6,12 +6,14 @@
 //
 // On a machine with a CUDA device (skipped elsewhere, as ctest skips): every
 // technique with a CUDA path renders the same images on both devices, on a
-// procedural scene, the engine CT and the head CT; a light move and a TF
+// procedural scene, the engine CT and the head CT (pathtrace also on a mesh
+// scene, within its standard error); a light move and a TF
 // change on the device give the image of a fresh render; an unchanged scene
 // uploads nothing; a device memory budget too small gives OutOfMemoryBudget.
 #include "penumbra/analysis/image_metrics.h"
 #include "penumbra/backends/cuda/device_cache.h"
 #include "penumbra/backends/cuda/device_mirror.h"
+#include "penumbra/backends/cuda/mesh_mirror.h"
 #include "penumbra/backends/device.h"
 #include "penumbra/base/error.h"
 #include "penumbra/render/scene_resources.h"
@@ -167,6 +169,84 @@ TEST(DeviceMirror, ABudgetTooSmallIsAClearError) {
   EXPECT_LE(cache.bytes(), 1024u);
 }
 
+// The meshes as media, mirrored through host memory: every array the views
+// reach is a copy (noise table, texture, TF tables, BVH), and the copies give
+// the same media and surface crossings as the host views; an unchanged scene
+// uploads them once.
+TEST(DeviceMirror, MirrorsTheMeshesAsMedia) {
+  std::vector<Scene> scenes{testing::repository_scene("scenes/mesh-sphere.json", 16)};
+  if (std::filesystem::exists(testing::shared_data_dir() / "bucky_32x32x32_uint8.nhdr")) {
+    scenes.push_back(testing::repository_scene("scenes/sphere-texture-colour.json", 16));
+  }
+  for (const Scene& scene : scenes) {
+    MeshMedia media;
+    media.update(scene);
+    media.build_shapes();
+    const MeshesView host = media.view();
+    ASSERT_GT(host.count, 0);
+    SceneResources resources;
+    resources.update(scene);
+    const RenderView view = resources.view(scene);
+    DeviceCache cache(host_memory());
+    const auto mirror_once = [&] {
+      cache.begin_frame();
+      DeviceMirror mirror(cache, view);
+      const MeshesView d = mirror_meshes(mirror, host);
+      cache.end_frame();
+      return d;
+    };
+    cache.begin_frame();
+    DeviceMirror mirror(cache, view);
+    const MeshesView d = mirror_meshes(mirror, host);
+    ASSERT_EQ(d.count, host.count);
+    ASSERT_NE(d.objects, host.objects);
+    ASSERT_NE(d.shapes, host.shapes);
+    for (int m = 0; m < host.count; ++m) {
+      const MeshMaterialView& h = host.objects[m];
+      const MeshMaterialView& o = d.objects[m];
+      for (const auto& [hd, od] : {std::pair{h.detail, o.detail}, std::pair{h.color_detail, o.color_detail}}) {
+        if (hd.noise) {
+          EXPECT_NE(hd.noise, od.noise);
+        }
+        if (hd.texture.data) {
+          EXPECT_NE(hd.texture.data, od.texture.data);
+        }
+      }
+      EXPECT_NE(o.tf.entries, h.tf.entries);
+      EXPECT_NE(o.tf.sigma, h.tf.sigma);
+      EXPECT_EQ(d.shapes[m].triangle_count, host.shapes[m].triangle_count);
+      EXPECT_GT(host.shapes[m].triangle_count, 0);
+      EXPECT_NE(d.shapes[m].nodes, host.shapes[m].nodes);
+      EXPECT_NE(d.shapes[m].triangles, host.shapes[m].triangles);
+    }
+    // The same media at points across the meshes' bounds, and the same
+    // crossings along rays through them.
+    const Box3 b = media.world_bounds();
+    Pcg32 rng(7);
+    const std::uint32_t all = (1u << host.count) - 1u;
+    int crossings = 0;
+    for (int i = 0; i < 500; ++i) {
+      const vec3 p = b.lower + vec3(rng.next_float(), rng.next_float(), rng.next_float()) * b.extent();
+      ASSERT_EQ(d.medium(all, p), host.medium(all, p)) << i;
+      const vec3 dir = glm::normalize(vec3(rng.next_float() - 0.5f, rng.next_float() - 0.5f, rng.next_float() - 0.5f));
+      const Ray ray{p - 2.0f * glm::length(b.extent()) * dir, dir};
+      for (int m = 0; m < host.count; ++m) {
+        float th[kMeshCrossings], td[kMeshCrossings];
+        const int nh = host.shapes[m].crossings(ray, 0.0f, kInfinity, th, kMeshCrossings);
+        ASSERT_EQ(d.shapes[m].crossings(ray, 0.0f, kInfinity, td, kMeshCrossings), nh);
+        for (int k = 0; k < std::min(nh, kMeshCrossings); ++k) ASSERT_EQ(td[k], th[k]);
+        crossings += nh;
+      }
+    }
+    EXPECT_GT(crossings, 100);
+    cache.end_frame();
+    const std::uint64_t uploads = cache.uploads();
+    EXPECT_GT(uploads, 0u);
+    mirror_once();
+    EXPECT_EQ(cache.uploads(), uploads) << "an unchanged scene uploads the meshes once";
+  }
+}
+
 // ---- on a CUDA device ----
 
 bool have_gpu() { return cuda_built() && cuda_device_count() > 0; }
@@ -279,7 +359,10 @@ TEST(CudaDevice, PathtraceAgreesWithinItsStandardError) {
   if (!have_gpu()) GTEST_SKIP() << "no CUDA device (or a build without the CUDA backend)";
   DeviceModeGuard guard;
   const TechniqueInfo& info = find_technique("pathtrace");
-  for (const DeviceScene& ds : device_scenes()) {
+  std::vector<DeviceScene> scenes = device_scenes();
+  // Meshes as media (their BVHs and detail mirrored: backends/cuda/mesh_mirror.h).
+  scenes.push_back({"mesh-sphere", testing::repository_scene("scenes/mesh-sphere.json", 64)});
+  for (const DeviceScene& ds : scenes) {
     SCOPED_TRACE(ds.name);
     const ParameterValues params = device_params(info);
     set_device_mode(DeviceMode::Cpu);

@@ -39,6 +39,7 @@ struct MeshBvhView {
   const BvhNode* nodes = nullptr;
   const BvhTriangle* triangles = nullptr;
   int node_count = 0;
+  int triangle_count = 0;
 
   // The ray parameters t in (t_min, t_max) where o + t d crosses the
   // surface, into `hits` (unsorted, at most `capacity`); returns how many
@@ -94,7 +95,9 @@ class MeshBvh {
  public:
   MeshBvh() = default;
   explicit MeshBvh(const TriangleMesh& mesh);
-  MeshBvhView view() const { return MeshBvhView{nodes_.data(), triangles_.data(), int(nodes_.size())}; }
+  MeshBvhView view() const {
+    return MeshBvhView{nodes_.data(), triangles_.data(), int(nodes_.size()), int(triangles_.size())};
+  }
   std::uint64_t bytes() const { return nodes_.size() * sizeof(BvhNode) + triangles_.size() * sizeof(BvhTriangle); }
   int depth() const { return depth_; }
 

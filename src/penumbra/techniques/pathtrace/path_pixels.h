@@ -63,9 +63,11 @@ PENUMBRA_HD std::uint64_t trace_pixel_paths(const PathKernel<Sampler>& kernel, c
 // Runs one pass on the CUDA device over `pixels` (width x height, row by
 // row): uploads them, launches trace_pixel_paths per pixel, downloads them;
 // returns the lookups. `view` and `shadows` are pathtrace's render views
-// (their device mirrors persist from pass to pass and frame to frame).
+// (their device mirrors persist from pass to pass and frame to frame),
+// `meshes` the scene's meshes with their BVHs (backends/cuda/mesh_mirror.h).
 // Defined only in builds with the CUDA backend (pathtrace_device.cu).
-std::uint64_t trace_paths_device(const RenderView& view, const RenderView& shadows, const PathSettings& settings,
-                                 const PathPass& pass, std::vector<PixelAccumulator>& pixels);
+std::uint64_t trace_paths_device(const RenderView& view, const RenderView& shadows, const MeshesView& meshes,
+                                 const PathSettings& settings, const PathPass& pass,
+                                 std::vector<PixelAccumulator>& pixels);
 
 }  // namespace penumbra

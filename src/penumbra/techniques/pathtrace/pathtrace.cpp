@@ -162,9 +162,8 @@ class PathTrace final : public Technique {
       bar.update((double(done) + double(skipped)) / budget);
       if (watcher) watcher->report((double(done) + double(skipped)) / budget);
     };
-    // Meshes are traced on the CPU only: their BVHs have no device mirror.
     const MeshesView meshes = meshes_.view();
-    const bool on_device = active_device() == Device::Cuda && meshes.count == 0;
+    const bool on_device = active_device() == Device::Cuda;
     // One pass: paths [taken, target) of every pixel not done, on the device
     // or over the CPU's tiles, through the same trace_pixel_paths.
     const auto run_pass = [&](const PathPass& pass) {
@@ -172,7 +171,7 @@ class PathTrace final : public Technique {
 #if defined(PENUMBRA_HAVE_CUDA)
         const auto active = std::uint64_t(
             std::count_if(accumulators_.begin(), accumulators_.end(), [](const auto& p) { return !p.done; }));
-        lookups += trace_paths_device(view, shadows, settings_, pass, accumulators_);
+        lookups += trace_paths_device(view, shadows, meshes, settings_, pass, accumulators_);
         add_paths(active * std::uint64_t(pass.target - pass.taken));
 #endif
         return;
