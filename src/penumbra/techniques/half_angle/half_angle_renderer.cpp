@@ -160,8 +160,8 @@ void HalfAngleRenderer::render(const Scene& scene, Image& image, RenderStats* st
   blur_.resize(texels);
   sums_.assign(pixels, vec4(0.0f));
   // The viewing rays and, per pass, the eye pixels (half_angle_kernels.h).
-  std::vector<float> eye_data(SlicedRows::kEyeFields * stride, 0.0f);
-  const SlicedRows eye{eye_data.data(), stride};
+  eye_.assign(SlicedRows::kEyeFields * stride, 0.0f);
+  const SlicedRows eye{eye_.data(), stride};
   float* const red = eye.field(SlicedRows::kRed);
   float* const green = eye.field(SlicedRows::kGreen);
   float* const blue = eye.field(SlicedRows::kBlue);
@@ -175,7 +175,8 @@ void HalfAngleRenderer::render(const Scene& scene, Image& image, RenderStats* st
     return vec3(eye.field(SlicedRows::kDirectionX)[i], eye.field(SlicedRows::kDirectionY)[i],
                 eye.field(SlicedRows::kDirectionZ)[i]);
   };
-  std::vector<int> eye_plane(pixels, -1);
+  eye_plane_.assign(pixels, -1);
+  int* const eye_plane = eye_plane_.data();
   parallel_for(0, height, [&](std::int64_t first, std::int64_t last) {
     for (std::int64_t y = first; y < last; ++y) {
       for (int x = 0; x < width; ++x) {
@@ -200,7 +201,8 @@ void HalfAngleRenderer::render(const Scene& scene, Image& image, RenderStats* st
       make_forward_scattering(settings_.albedo, settings_.cone_angle_deg, view.material.phase_g, view.material.albedo,
                               view.volume.min_spacing());
   std::atomic<std::uint64_t> samples{0};
-  std::vector<std::uint8_t> plane_done(pixels);
+  plane_done_.assign(pixels, 0);
+  std::uint8_t* const plane_done = plane_done_.data();
   std::vector<int> bucket_start, bucket_pixels;
 
   for (std::size_t li = 0; li < lights.size(); ++li) {
@@ -231,7 +233,8 @@ void HalfAngleRenderer::render(const Scene& scene, Image& image, RenderStats* st
     // Eye pixels, and the slice before which each plane hit is shaded (the
     // number of slices lying before it along s), bucketed.
     bucket_start.assign(std::size_t(slices.count) + 2, 0);
-    std::vector<int> plane_slice(pixels, -1);
+    plane_slice_.assign(pixels, -1);
+    int* const plane_slice = plane_slice_.data();
     const vec3 base = slices.eye_front_to_back ? vec3(0.0f) : lit.background;
     for (std::size_t i = 0; i < pixels; ++i) {
       red[i] = base.r, green[i] = base.g, blue[i] = base.b;
@@ -343,7 +346,8 @@ void HalfAngleRenderer::render(const Scene& scene, Image& image, RenderStats* st
 }
 
 std::uint64_t HalfAngleRenderer::aux_bytes() const {
-  std::uint64_t bytes = (light_.size() + blur_.size()) * sizeof(vec4);
+  std::uint64_t bytes = (light_.size() + blur_.size() + sums_.size()) * sizeof(vec4) + eye_.size() * sizeof(float) +
+                        (eye_plane_.size() + plane_slice_.size()) * sizeof(int) + plane_done_.size();
   for (const LightRays& lr : lights_) bytes += lr.rays.size() * sizeof(float);
   return bytes;
 }

@@ -55,6 +55,12 @@ class HalfAngleRenderer {
   bool built_ = false;
   std::vector<vec4> light_, blur_;
   std::vector<vec4> sums_;
+  // Per pixel, kept from frame to frame (a fresh allocation each frame cost
+  // its page faults): the viewing rays and eye buffer (SlicedRows), the
+  // plane each ray hits, the slice that reaches it, and whether it was shaded.
+  std::vector<float> eye_;
+  std::vector<int> eye_plane_, plane_slice_;
+  std::vector<std::uint8_t> plane_done_;
   int last_slices_ = 0;
 };
 
