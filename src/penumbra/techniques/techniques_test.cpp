@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace penumbra {
@@ -101,6 +102,16 @@ TEST(TechniqueMatrix, EveryTechniqueRendersEveryScene) {
   }
 }
 
+// A technique's defaults, with smaller shadow maps and fewer paths, for time.
+ParameterValues quick_parameters(const TechniqueInfo& info) {
+  ParameterValues params(info.parameters);
+  if (const ParameterSpec* r = info.parameters.find("resolution"); r && r->min <= 256.0 && 256.0 <= r->max) {
+    params.apply({{"resolution", 256.0}}, true);
+  }
+  if (info.name == "pathtrace") params.apply({{"spp", 8.0}, {"min_spp", 4.0}, {"progress", false}}, true);
+  return params;
+}
+
 // Interactive edits give the image of a fresh technique. A technique keeps
 // structures from frame to frame (shadow caches, moment pyramids, light
 // buffers, per-pixel buffers), and each must follow what it depends on and
@@ -149,12 +160,7 @@ TEST(TechniqueMatrix, EditsGiveTheImageOfAFreshTechnique) {
   };
   for (const MatrixScene& ms : kScenes) {
     for (const TechniqueInfo& info : technique_registry()) {
-      ParameterValues params(info.parameters);
-      // Smaller shadow maps and fewer paths than the defaults, for time.
-      if (const ParameterSpec* r = info.parameters.find("resolution"); r && r->min <= 256.0 && 256.0 <= r->max) {
-        params.apply({{"resolution", 256.0}}, true);
-      }
-      if (info.name == "pathtrace") params.apply({{"spp", 8.0}, {"min_spp", 4.0}, {"progress", false}}, true);
+      const ParameterValues params = quick_parameters(info);
       auto live = info.create();
       Scene scene = ms.make();
       live->prepare(scene, params);
@@ -175,6 +181,76 @@ TEST(TechniqueMatrix, EditsGiveTheImageOfAFreshTechnique) {
       }
     }
   }
+}
+
+// Other values of a parameter near `current`, to try in turn: a flag
+// flipped, the next choice, a number a quarter larger or smaller, an integer
+// one or two more, one less, doubled, or 16 (a size that must be 0 or at
+// least 16; two more: an odd kernel size).
+std::vector<ParameterValue> other_values(const ParameterSpec& spec, const ParameterValue& current) {
+  switch (spec.type) {
+    case ParameterType::Bool: return {!std::get<bool>(current)};
+    case ParameterType::Choice: {
+      const auto at = std::find(spec.choices.begin(), spec.choices.end(), std::get<std::string>(current));
+      const std::size_t next = at == spec.choices.end() ? 0 : std::size_t(at - spec.choices.begin() + 1);
+      return {spec.choices[next % spec.choices.size()]};
+    }
+    case ParameterType::Int: {
+      const double v = std::get<double>(current);
+      return {v + 1.0, v - 1.0, v + 2.0, 2.0 * v, 16.0};
+    }
+    case ParameterType::Float: {
+      const double v = std::get<double>(current);
+      return {v * 1.25, v * 0.8, spec.min + 0.1 * (spec.max - spec.min)};
+    }
+  }
+  return {};
+}
+
+// Parameter edits, the same way: each parameter of every technique in turn
+// set to another value (one the parameter and prepare() accept) and then back
+// to the defaults; the live instance must render what a fresh one prepared
+// with the same values renders.
+TEST(TechniqueMatrix, ParameterEditsGiveTheImageOfAFreshTechnique) {
+  const Scene scene = kScenes[0].make();
+  int edits = 0;
+  for (const TechniqueInfo& info : technique_registry()) {
+    const ParameterValues defaults = quick_parameters(info);
+    auto live = info.create();
+    live->prepare(scene, defaults);
+    Image default_image, image;
+    live->render(scene, default_image);
+    for (const ParameterSpec& spec : info.parameters.specs()) {
+      SCOPED_TRACE(info.name + "." + spec.name);
+      // The first other value that the parameter and prepare() accept.
+      ParameterValues edited = defaults;
+      Image expected;
+      bool found = false;
+      for (const ParameterValue& value : other_values(spec, defaults.value(spec.name))) {
+        edited = defaults;
+        auto fresh = info.create();
+        try {
+          edited.set(spec.name, value);
+          if (edited == defaults) continue;
+          fresh->prepare(scene, edited);
+          fresh->render(scene, expected);
+        } catch (const Error&) {
+          continue;  // a value or combination the technique refuses
+        }
+        found = true;
+        break;
+      }
+      ASSERT_TRUE(found) << "no other value to try";
+      live->prepare(scene, edited);
+      live->render(scene, image);
+      EXPECT_LE(max_abs_error(image, expected), 1e-6) << "edited";
+      live->prepare(scene, defaults);
+      live->render(scene, image);
+      EXPECT_LE(max_abs_error(image, default_image), 1e-6) << "back to the defaults";
+      ++edits;
+    }
+  }
+  EXPECT_GE(edits, 100);
 }
 
 // With albedo 1, ambient 1 and no lights, lit single scattering reduces to
