@@ -117,8 +117,9 @@ ParameterValues quick_parameters(const TechniqueInfo& info) {
 // buffers, per-pixel buffers), and each must follow what it depends on and
 // nothing else may leak from the frame before. On every matrix scene each
 // technique renders once, then after each edit (camera orbit, light move, TF
-// change, image size, material) prepares and renders again; the image must
-// be that of a new instance prepared on the edited scene.
+// change, image size, material, a second light, a clip plane, planes added or
+// removed, the render step) prepares and renders again; the image must be
+// that of a new instance prepared on the edited scene.
 TEST(TechniqueMatrix, EditsGiveTheImageOfAFreshTechnique) {
   struct Edit {
     const char* name;
@@ -156,6 +157,32 @@ TEST(TechniqueMatrix, EditsGiveTheImageOfAFreshTechnique) {
          m.ambient = 0.3f;
          m.shading = m.shading == Shading::Phong ? Shading::Phase : Shading::Phong;
          s.set_material(m);
+       }},
+      {"second light",
+       [](Scene& s) {
+         std::vector<Light> lights = s.lights();
+         Light l;
+         l.type = LightType::Point;
+         l.position = vec3(-25.0f, 30.0f, 20.0f);
+         l.intensity = 1500.0f;
+         lights.push_back(l);
+         s.set_lights(lights);
+       }},
+      {"clip plane",
+       [](Scene& s) { s.set_clip_planes({vec4(-0.4f, 0.2f, 1.0f, 3.0f)}); }},
+      {"planes",
+       [](Scene& s) {
+         if (s.planes().empty()) {
+           s.set_planes({Plane{vec3(0.0f, 0.0f, -22.0f), vec3(0.0f, 0.0f, 1.0f), vec3(0.7f)}});
+         } else {
+           s.set_planes({});
+         }
+       }},
+      {"render step",
+       [](Scene& s) {
+         RenderSettings r = s.render();
+         r.step *= 1.6f;
+         s.set_render(r);
        }},
   };
   for (const MatrixScene& ms : kScenes) {

@@ -228,6 +228,18 @@ class RefinedCells {
     }
   }
 
+  // view_ points into the vectors below: a move keeps their buffers, a copy
+  // would leave the copy's view on the original's (filtered-sat keeps one
+  // per light in a vector, which copied them when a light was added and read
+  // freed bricks: TechniqueMatrix.EditsGiveTheImageOfAFreshTechnique). The
+  // move is noexcept (vector growth moves, never copies) though glm's vectors
+  // in the view do not say so.
+  RefinedCells() = default;
+  RefinedCells(RefinedCells&&) noexcept = default;
+  RefinedCells& operator=(RefinedCells&&) noexcept = default;
+  RefinedCells(const RefinedCells&) = delete;
+  RefinedCells& operator=(const RefinedCells&) = delete;
+
   void clear();
   const RefinedCellsView& view() const { return view_; }
   std::size_t brick_count() const;

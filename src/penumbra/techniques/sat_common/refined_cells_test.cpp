@@ -15,9 +15,16 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <type_traits>
 
 namespace penumbra {
 namespace {
+
+// The view points into the object's own vectors: a vector of them (one per
+// light) must move them when it grows, never copy them (a copy's view read the
+// original's freed bricks).
+static_assert(std::is_nothrow_move_constructible_v<RefinedCells>);
+static_assert(!std::is_copy_constructible_v<RefinedCells>);
 
 struct SurfaceDepth {
   vec3 n = glm::normalize(vec3(0.3f, 0.5f, 0.8f));
