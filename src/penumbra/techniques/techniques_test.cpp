@@ -117,12 +117,15 @@ ParameterValues quick_parameters(const TechniqueInfo& info) {
 // Interactive edits give the image of a fresh technique. A technique keeps
 // structures from frame to frame (shadow caches, moment pyramids, light
 // buffers, per-pixel buffers), and each must follow what it depends on and
-// nothing else may leak from the frame before. On every matrix scene each
+// nothing else may leak from the frame before. On each matrix scene every
 // technique renders once, then after each edit (camera orbit, light move, TF
 // change, image size, material, a second light, a clip plane, planes added or
-// removed, the render step) prepares and renders again; the image must be
-// that of a new instance prepared on the edited scene.
-TEST(TechniqueMatrix, EditsGiveTheImageOfAFreshTechnique) {
+// removed, the render step, a shadow TF, another volume) prepares and renders
+// again; the image must be that of a new instance prepared on the edited
+// scene.
+class SceneEdits : public ::testing::TestWithParam<int> {};
+
+TEST_P(SceneEdits, GiveTheImageOfAFreshTechnique) {
   struct Edit {
     const char* name;
     void (*apply)(Scene&);
@@ -186,8 +189,16 @@ TEST(TechniqueMatrix, EditsGiveTheImageOfAFreshTechnique) {
          r.step *= 1.6f;
          s.set_render(r);
        }},
+      {"shadow TF",
+       [](Scene& s) { s.set_shadow_transfer_function(testing::step_tf(0.5f, vec3(1.0f), 0.8f)); }},
+      {"new volume",
+       [](Scene& s) {
+         s.set_volume(make_procedural_volume("marschner-lobb", ivec3(28, 34, 30)));
+         s.set_camera(Camera::framing(s.volume().world_box()));
+       }},
   };
-  for (const MatrixScene& ms : kScenes) {
+  const MatrixScene& ms = kScenes[GetParam()];
+  {
     for (const TechniqueInfo& info : technique_registry()) {
       const ParameterValues params = quick_parameters(info);
       auto live = info.create();
@@ -212,10 +223,17 @@ TEST(TechniqueMatrix, EditsGiveTheImageOfAFreshTechnique) {
   }
 }
 
+INSTANTIATE_TEST_SUITE_P(EveryMatrixScene, SceneEdits, ::testing::Range(0, int(std::size(kScenes))),
+                         [](const ::testing::TestParamInfo<int>& info) {
+                           std::string name = kScenes[info.param].name;
+                           std::replace(name.begin(), name.end(), '-', '_');
+                           return name;
+                         });
+
 // The same for mesh scenes, with the techniques that draw meshes: the mesh
 // moved, its material's TF and detail changed, its detail's time advanced
 // (animation), a second mesh added, and the light and camera moved.
-TEST(TechniqueMatrix, MeshEditsGiveTheImageOfAFreshTechnique) {
+TEST(SceneEdits, OnMeshScenesGiveTheImageOfAFreshTechnique) {
   struct Edit {
     const char* name;
     void (*apply)(Scene&);
@@ -321,7 +339,7 @@ std::vector<ParameterValue> other_values(const ParameterSpec& spec, const Parame
 // set to another value (one the parameter and prepare() accept) and then back
 // to the defaults; the live instance must render what a fresh one prepared
 // with the same values renders.
-TEST(TechniqueMatrix, ParameterEditsGiveTheImageOfAFreshTechnique) {
+TEST(ParameterEdits, GiveTheImageOfAFreshTechnique) {
   const Scene scene = kScenes[0].make();
   int edits = 0;
   for (const TechniqueInfo& info : technique_registry()) {
