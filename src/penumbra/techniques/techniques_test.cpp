@@ -123,14 +123,39 @@ ParameterValues quick_parameters(const TechniqueInfo& info) {
 // removed, the render step, a shadow TF, another volume) prepares and renders
 // again; the image must be that of a new instance prepared on the edited
 // scene.
+struct SceneEdit {
+  const char* name;
+  void (*apply)(Scene&);
+};
+
+// Renders `scene` with a live instance of `info`, then again after each edit
+// in turn, each time against a fresh instance prepared on the edited scene.
+void expect_edits_give_a_fresh_image(const TechniqueInfo& info, Scene scene, const std::vector<SceneEdit>& edits,
+                                     const std::string& label) {
+  const ParameterValues params = quick_parameters(info);
+  auto live = info.create();
+  live->prepare(scene, params);
+  Image image;
+  live->render(scene, image);
+  for (const SceneEdit& edit : edits) {
+    SCOPED_TRACE(label + " x " + info.name + ", after the " + edit.name);
+    edit.apply(scene);
+    live->prepare(scene, params);
+    live->render(scene, image);
+    auto fresh = info.create();
+    fresh->prepare(scene, params);
+    Image expected;
+    fresh->render(scene, expected);
+    ASSERT_EQ(image.width(), expected.width());
+    ASSERT_EQ(image.height(), expected.height());
+    EXPECT_LE(max_abs_error(image, expected), 1e-6);
+  }
+}
+
 class SceneEdits : public ::testing::TestWithParam<int> {};
 
 TEST_P(SceneEdits, GiveTheImageOfAFreshTechnique) {
-  struct Edit {
-    const char* name;
-    void (*apply)(Scene&);
-  };
-  const Edit edits[] = {
+  const std::vector<SceneEdit> edits = {
       {"camera orbit",
        [](Scene& s) {
          Camera c = s.camera();
@@ -198,28 +223,8 @@ TEST_P(SceneEdits, GiveTheImageOfAFreshTechnique) {
        }},
   };
   const MatrixScene& ms = kScenes[GetParam()];
-  {
-    for (const TechniqueInfo& info : technique_registry()) {
-      const ParameterValues params = quick_parameters(info);
-      auto live = info.create();
-      Scene scene = ms.make();
-      live->prepare(scene, params);
-      Image image;
-      live->render(scene, image);
-      for (const Edit& edit : edits) {
-        SCOPED_TRACE(std::string(ms.name) + " x " + info.name + ", after the " + edit.name);
-        edit.apply(scene);
-        live->prepare(scene, params);
-        live->render(scene, image);
-        auto fresh = info.create();
-        fresh->prepare(scene, params);
-        Image expected;
-        fresh->render(scene, expected);
-        ASSERT_EQ(image.width(), expected.width());
-        ASSERT_EQ(image.height(), expected.height());
-        EXPECT_LE(max_abs_error(image, expected), 1e-6);
-      }
-    }
+  for (const TechniqueInfo& info : technique_registry()) {
+    expect_edits_give_a_fresh_image(info, ms.make(), edits, ms.name);
   }
 }
 
@@ -234,11 +239,7 @@ INSTANTIATE_TEST_SUITE_P(EveryMatrixScene, SceneEdits, ::testing::Range(0, int(s
 // moved, its material's TF and detail changed, its detail's time advanced
 // (animation), a second mesh added, and the light and camera moved.
 TEST(SceneEdits, OnMeshScenesGiveTheImageOfAFreshTechnique) {
-  struct Edit {
-    const char* name;
-    void (*apply)(Scene&);
-  };
-  const Edit edits[] = {
+  const std::vector<SceneEdit> edits = {
       {"mesh move",
        [](Scene& s) {
          std::vector<MeshObject> meshes = s.meshes();
@@ -289,25 +290,9 @@ TEST(SceneEdits, OnMeshScenesGiveTheImageOfAFreshTechnique) {
          s.set_camera(c);
        }},
   };
+  const Scene scene = testing::repository_scene("scenes/mesh-sphere.json", 24);
   for (const TechniqueInfo& info : technique_registry()) {
-    if (!info.draws_meshes) continue;
-    const ParameterValues params = quick_parameters(info);
-    auto live = info.create();
-    Scene scene = testing::repository_scene("scenes/mesh-sphere.json", 24);
-    live->prepare(scene, params);
-    Image image;
-    live->render(scene, image);
-    for (const Edit& edit : edits) {
-      SCOPED_TRACE(info.name + ", after the " + edit.name);
-      edit.apply(scene);
-      live->prepare(scene, params);
-      live->render(scene, image);
-      auto fresh = info.create();
-      fresh->prepare(scene, params);
-      Image expected;
-      fresh->render(scene, expected);
-      EXPECT_LE(max_abs_error(image, expected), 1e-6);
-    }
+    if (info.draws_meshes) expect_edits_give_a_fresh_image(info, scene, edits, "mesh-sphere");
   }
 }
 
