@@ -19,7 +19,8 @@
 //
 // One ray at a time (the lane-generic lighting at one lane): the BVH walk is
 // per ray. render_image_with_meshes runs it over the image's tiles on the
-// CPU; the meshes' BVHs have no device mirror.
+// CPU (no device launch; the path tracer's device path reads the meshes
+// through backends/cuda/mesh_mirror.h).
 #include "penumbra/base/parallel.h"
 #include "penumbra/render/image.h"
 #include "penumbra/render/mesh_media.h"

@@ -120,9 +120,9 @@ ParameterValues quick_parameters(const TechniqueInfo& info) {
 // nothing else may leak from the frame before. On each matrix scene every
 // technique renders once, then after each edit (camera orbit, light move, TF
 // change, image size, material, a second light, a clip plane, planes added or
-// removed, the render step, a shadow TF, another volume) prepares and renders
-// again; the image must be that of a new instance prepared on the edited
-// scene.
+// removed, the render step, a shadow TF, another volume, a larger image)
+// prepares and renders again; the image must be that of a new instance
+// prepared on the edited scene.
 struct SceneEdit {
   const char* name;
   void (*apply)(Scene&);
@@ -130,15 +130,18 @@ struct SceneEdit {
 
 // Renders `scene` with a live instance of `info`, then again after each edit
 // in turn, each time against a fresh instance prepared on the edited scene.
+// Most edits must change the image (else they test nothing).
 void expect_edits_give_a_fresh_image(const TechniqueInfo& info, Scene scene, const std::vector<SceneEdit>& edits,
                                      const std::string& label) {
   const ParameterValues params = quick_parameters(info);
   auto live = info.create();
   live->prepare(scene, params);
-  Image image;
+  Image image, before;
   live->render(scene, image);
+  int changed = 0;
   for (const SceneEdit& edit : edits) {
     SCOPED_TRACE(label + " x " + info.name + ", after the " + edit.name);
+    before = image;
     edit.apply(scene);
     live->prepare(scene, params);
     live->render(scene, image);
@@ -149,7 +152,10 @@ void expect_edits_give_a_fresh_image(const TechniqueInfo& info, Scene scene, con
     ASSERT_EQ(image.width(), expected.width());
     ASSERT_EQ(image.height(), expected.height());
     EXPECT_LE(max_abs_error(image, expected), 1e-6);
+    changed += int(image.width() != before.width() || image.height() != before.height() ||
+                   max_abs_error(image, before) > 1e-3);
   }
+  EXPECT_GE(2 * changed, int(edits.size())) << label << " x " << info.name << ": edits that changed the image";
 }
 
 class SceneEdits : public ::testing::TestWithParam<int> {};
@@ -220,6 +226,13 @@ TEST_P(SceneEdits, GiveTheImageOfAFreshTechnique) {
        [](Scene& s) {
          s.set_volume(make_procedural_volume("marschner-lobb", ivec3(28, 34, 30)));
          s.set_camera(Camera::framing(s.volume().world_box()));
+       }},
+      {"larger image",
+       [](Scene& s) {
+         RenderSettings r = s.render();
+         r.width = 30;
+         r.height = 26;
+         s.set_render(r);
        }},
   };
   const MatrixScene& ms = kScenes[GetParam()];

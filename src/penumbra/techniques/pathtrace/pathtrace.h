@@ -11,8 +11,8 @@
 // planes. Light units as in DESIGN-NOTES.md, so `single` mode converges to
 // shadow-rays; `ambient` is ignored (compare with scenes that set it to 0).
 // The scene's closed meshes are media too, tracked one medium at a time
-// (mesh_tracking.h), so every mesh scene of convolution has a reference; with
-// meshes the paths run on the CPU (their BVHs have no device mirror).
+// (mesh_tracking.h), so every mesh scene of convolution has a reference, on
+// either device (the meshes mirrored by backends/cuda/mesh_mirror.h).
 //
 // Parameters
 //   mode          single (default): one scattering event lit by transmittance

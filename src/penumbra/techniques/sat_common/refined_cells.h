@@ -231,7 +231,7 @@ class RefinedCells {
   // view_ points into the vectors below: a move keeps their buffers, a copy
   // would leave the copy's view on the original's (filtered-sat keeps one
   // per light in a vector, which copied them when a light was added and read
-  // freed bricks: TechniqueMatrix.EditsGiveTheImageOfAFreshTechnique). The
+  // freed bricks: SceneEdits.GiveTheImageOfAFreshTechnique). The
   // move is noexcept (vector growth moves, never copies) though glm's vectors
   // in the view do not say so.
   RefinedCells() = default;

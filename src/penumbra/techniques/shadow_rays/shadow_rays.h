@@ -21,7 +21,7 @@
 // scene's viewing rays are marched through the volume and the meshes
 // together (render/mesh_march.h) and every shadow ray crosses both, so each
 // mesh scene has a hard-shadow reference; such scenes render on the CPU
-// (the meshes' BVHs have no device mirror). docs/shadow-rays.md, "Meshes".
+// (render_meshes has no device launch). docs/shadow-rays.md, "Meshes".
 //
 // Default light_samples = 1: one ray toward the light's centre, the
 // hard-shadow reference, unchanged images for every existing scene; ask for
