@@ -150,6 +150,27 @@ TEST(DeviceMirror, UploadsAnArrayOnlyWhenWhatItDependsOnChanged) {
   EXPECT_EQ(cache.uploads(), before + 2);
 }
 
+// One host array mirrored under two versions in one frame (the scene's
+// volume that is also a mesh's texture): the first copy stays readable until
+// the next frame begins, and then its memory is released.
+TEST(DeviceCache, AMirrorHandedOutThisFrameOutlivesAnotherVersion) {
+  DeviceCache cache(host_memory());
+  std::vector<float> host(256, 3.0f);
+  cache.begin_frame();
+  const auto* first = static_cast<const float*>(cache.persistent(host.data(), 1024, 1, "a"));
+  const auto* second = static_cast<const float*>(cache.persistent(host.data(), 1024, 2, "b"));
+  ASSERT_NE(first, second);
+  EXPECT_EQ(first[255], 3.0f);  // not freed (ASan would report a read of freed memory)
+  EXPECT_EQ(second[0], 3.0f);
+  EXPECT_EQ(cache.bytes(), 2048u);
+  cache.end_frame();
+  cache.begin_frame();
+  EXPECT_EQ(cache.bytes(), 1024u) << "the replaced copy is released with the frame";
+  cache.persistent(host.data(), 1024, 2, "b");
+  cache.end_frame();
+  EXPECT_EQ(cache.bytes(), 1024u);
+}
+
 TEST(DeviceMirror, ABudgetTooSmallIsAClearError) {
   DeviceModeGuard guard;
   const Scene scene = testing::lit_spheres(16);

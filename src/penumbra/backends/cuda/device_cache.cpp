@@ -80,7 +80,14 @@ void* DeviceCache::persistent(const void* host, std::size_t bytes, std::uint64_t
     return it->second.device;
   }
   if (it != mirrors_.end()) {
-    release(it->second.device, it->second.bytes);
+    // A mirror handed out earlier in this frame may still be read through a
+    // view copied for this frame (one host array under two versions: the
+    // scene's volume also a mesh's texture): it goes with the frame's copies.
+    if (it->second.used) {
+      frame_.emplace_back(it->second.device, it->second.bytes);
+    } else {
+      release(it->second.device, it->second.bytes);
+    }
     mirrors_.erase(it);
   }
   Mirror mirror;

@@ -50,6 +50,8 @@ class DeviceCache {
   void end_frame();
 
   // The device copy of host[0, bytes) as of `version` (nullptr for none).
+  // The same array asked for under another version or size replaces its
+  // mirror; one already handed out in this frame lives to the frame's end.
   void* persistent(const void* host, std::size_t bytes, std::uint64_t version, const char* what);
   // A device copy valid until the next begin_frame().
   void* frame(const void* host, std::size_t bytes, const char* what);
