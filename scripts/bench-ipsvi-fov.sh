@@ -9,6 +9,8 @@
 #   FOVS="40 32 16 9 6 3"       fields of view
 #   FRAMES=3                    frames for the median
 #   TECHNIQUES="ipsvi shadow-rays"
+#   ERROR=1                     add ipsvi's mean / p99 dE against exact shadow
+#                               rays (penumbra compare, one frame) per fov
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 bin=${PENUMBRA:-$root/build/penumbra}
@@ -21,8 +23,9 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 scene_dir=$(cd "$(dirname "$scene")" && pwd)
 echo "machine: $(nproc) cores, load before: $(cut -d' ' -f1-3 /proc/loadavg)" >&2
-echo "| fov | $(for t in $techniques; do printf '%s ms | %s MB | ' "$t" "$t"; done)"
-echo "|---$(for t in $techniques; do printf '|---|---'; done)|"
+error=${ERROR:-0}
+echo "| fov | $(for t in $techniques; do printf '%s ms | %s MB | ' "$t" "$t"; done)$([ "$error" = 1 ] && printf 'ipsvi dE mean / p99 |')"
+echo "|---$(for t in $techniques; do printf '|---|---'; done)$([ "$error" = 1 ] && printf '|---')|"
 for fov in $fovs; do
   zoomed=$tmp/fov-$fov.json
   python3 - "$scene" "$fov" "$scene_dir" > "$zoomed" <<'PY'
@@ -42,6 +45,12 @@ PY
     ms=$(echo "$line" | python3 -c 'import json,sys; r=json.load(sys.stdin); print("%.1f | %.2f" % (r["frame_ms_median"], r["aux_bytes"] / 1e6))')
     row="$row $ms |"
   done
+  if [ "$error" = 1 ]; then
+    "$bin" compare "$zoomed" --techniques ipsvi --reference shadow-rays --param shadow-rays.shadow_cache=false \
+      --size "${size}x${size}" --frames 1 -o "$tmp/compare-$fov" > /dev/null
+    de=$(python3 -c 'import json,sys; r=json.load(open(sys.argv[1])); t=[x for x in r["techniques"] if x["technique"]=="ipsvi"][0]; print("%.2f / %.2f" % (t["mean_de"], t["p99_de"]))' "$tmp/compare-$fov/report.json")
+    row="$row $de |"
+  fi
   echo "$row"
 done
 echo "load after: $(cut -d' ' -f1-3 /proc/loadavg)" >&2

@@ -14,7 +14,9 @@
 //
 // Texel size: a pixel's footprint at the region's centroid across the light,
 // longer by up to LightCacheRegion::max_aspect (4) along the light-space image
-// of the viewing direction, and the size capped (sweep_renderer.h). Zoomed in
+// of the viewing direction, the size capped, and the texel count held to a
+// budget per image pixel (LightCacheRegion::max_texels, sweep_renderer.h),
+// past which texels grow beyond the pixel. Zoomed in
 // on a volume lit from the side the fitted rectangle is a strip one image wide
 // and as long as the frustum runs deep into the box; texels a pixel square
 // would need the strip's length in pixels along it. The long texels cost

@@ -89,6 +89,48 @@ TEST(CacheFit, CoversWhatTheCameraSeesAndKeepsItsSizeWhenZooming) {
   EXPECT_GT(trimmed_at_3, 0);
 }
 
+// With a texel budget (ipsvi's automatic cache: 1.4 texels per image pixel;
+// here 1.5)
+// the cache keeps its size from a wide view down to fov 3, still covers all
+// the camera sees, and keeps pixel-wide texels where they fit the budget.
+// Without the budget the same fits grow several times from fov 32 to 3.
+TEST(CacheFit, ATexelBudgetBoundsTheCacheAtEveryZoom) {
+  const double budget = 1.5 * kFitWidth * kFitHeight;
+  int over_without = 0;
+  for (const Light& light : {testing::directional_light(vec3(1.0f, 0.2f, -0.3f)), testing::directional_light(vec3(0.3f, -0.5f, -1.0f)),
+                             testing::point_light(vec3(60.0f, -80.0f, 50.0f))}) {
+    double unbounded_at_32 = 0.0;
+    for (const float fov : {40.0f, 32.0f, 16.0f, 9.0f, 6.0f, 3.0f}) {
+      const CameraView view = zoomed(fov).view();
+      LightCacheRegion region = visible_cache_region(view, kFitWidth, kFitHeight, kFitBox, nullptr, 0);
+      const LightCacheProjection unbounded = fit_light_cache_projection(light, kFitBox, region, 0, 3 * kFitWidth, true);
+      region.max_texels = budget;
+      const LightCacheProjection p = fit_light_cache_projection(light, kFitBox, region, 0, 3 * kFitWidth, true);
+      const double texels = double(p.size) * p.rows, unbounded_texels = double(unbounded.size) * unbounded.rows;
+      std::printf("fov %4.1f: %d x %d (%.2f per pixel), without the budget %d x %d (%.2f)\n", fov, p.size, p.rows,
+                  texels / (kFitWidth * kFitHeight), unbounded.size, unbounded.rows,
+                  unbounded_texels / (kFitWidth * kFitHeight));
+      EXPECT_LE(texels, budget) << "fov " << fov;
+      if (unbounded_texels <= budget) {
+        EXPECT_EQ(p.size, unbounded.size) << "fov " << fov;  // under the budget nothing changes
+        EXPECT_EQ(p.rows, unbounded.rows) << "fov " << fov;
+      } else {
+        // Coarser only as far as the budget asks: one step finer would not fit.
+        EXPECT_GT(texels, 0.6 * budget) << "fov " << fov;
+      }
+      if (fov == 32.0f) unbounded_at_32 = unbounded_texels;
+      if (fov < 32.0f && unbounded_texels > 2.0 * unbounded_at_32) ++over_without;
+      for (int i = 0; i < 40 * 40 * 40; ++i) {
+        const vec3 f((float(i % 40) + 0.5f) / 40.0f, (float(i / 40 % 40) + 0.5f) / 40.0f, (float(i / 1600) + 0.5f) / 40.0f);
+        const vec3 x = kFitBox.lower + f * kFitBox.extent();
+        if (!seen(view, x)) continue;
+        ASSERT_TRUE(inside_cache(p, x)) << "fov " << fov << ", point " << x.x << " " << x.y << " " << x.z;
+      }
+    }
+  }
+  EXPECT_GT(over_without, 3);  // the budget is what bounds these fits
+}
+
 // A floor below the box, lit at a slant: floor points in view whose light
 // ray crosses the box (they may lie in its shadow) are covered even where
 // that crossing is off screen.

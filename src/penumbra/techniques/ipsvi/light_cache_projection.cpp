@@ -165,20 +165,34 @@ LightCacheProjection fit_light_cache_projection(const Light& light, const Box3& 
     const float wanted = glm::max(glm::min(texels.x, texels.y), glm::max(texels.x, texels.y) / aspect);
     n = glm::clamp(int(std::ceil(glm::min(wanted, 1e7f))), 16, cap);
   }
-  vec2 t = extent / float(glm::max(n - 1, 1));
-  glm::ivec2 counts(n);
   // Texels no more than `aspect` times longer than wide: across a long
   // rectangle they are wider than its extent over n needs, and with `trim`
   // fewer of them cover it (one more than the extent's texels, for the
   // centre's rounding to whole texels below).
-  const int fewest = glm::min(n, 16);
-  if (t.x > aspect * t.y) {
-    t.y = t.x / aspect;
-    if (trim) counts.y = glm::clamp(int(std::ceil(extent.y / t.y)) + 1, fewest, n);
-  }
-  if (t.y > aspect * t.x) {
-    t.x = t.y / aspect;
-    if (trim) counts.x = glm::clamp(int(std::ceil(extent.x / t.x)) + 1, fewest, n);
+  vec2 t;
+  glm::ivec2 counts;
+  auto grid = [&](int texels) {
+    t = extent / float(glm::max(texels - 1, 1));
+    counts = glm::ivec2(texels);
+    const int fewest = glm::min(texels, 16);
+    if (t.x > aspect * t.y) {
+      t.y = t.x / aspect;
+      if (trim) counts.y = glm::clamp(int(std::ceil(extent.y / t.y)) + 1, fewest, texels);
+    }
+    if (t.y > aspect * t.x) {
+      t.x = t.y / aspect;
+      if (trim) counts.x = glm::clamp(int(std::ceil(extent.x / t.x)) + 1, fewest, texels);
+    }
+  };
+  grid(n);
+  // An automatic grid over the region's texel budget gets coarser texels,
+  // both sides alike (the count of each side scales with n).
+  const double budget = region.max_texels;
+  for (int pass = 0; size == 0 && budget > 0.0 && pass < 4 && n > 16; ++pass) {
+    const double texels = double(counts.x) * double(counts.y);
+    if (texels <= budget) break;
+    n = glm::max(16, int(std::floor(double(n) * std::sqrt(budget / texels))));
+    grid(n);
   }
   p.size = counts.x;
   p.rows = counts.y;

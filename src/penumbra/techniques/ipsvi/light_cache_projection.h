@@ -136,11 +136,14 @@ struct LightCacheRegion {
   vec3 long_direction{0.0f};       // texels may be longer along this direction's light-space image
   float max_aspect = 4.0f;         // at most this much longer
   float pixel = 0.0f;              // world size of a pixel at the centroid (sizes the cache when size is 0)
+  double max_texels = 0.0;         // automatic size: at most this many texels (0: no bound but max_size)
 };
 
 // The projection of `light` fitted to `region`'s light-space bounding
 // rectangle (within the box's): `size` texels per side, or with 0 texels a
-// pixel wide across the rectangle's short side, at most `max_size`. With
+// pixel wide across the rectangle's short side, at most `max_size` (and with
+// region.max_texels, texels coarser by the same factor on both sides until
+// the grid holds at most that many; octahedral maps are not bounded so). With
 // `trim`, where texels longer than max_aspect would be needed along one side,
 // the other side gets only the texels (at least 16) it needs to cover the
 // rectangle at a texel max_aspect times shorter, instead of `size`. The

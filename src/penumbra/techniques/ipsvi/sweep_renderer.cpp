@@ -49,6 +49,8 @@ SegmentTape& thread_tape(int limit) {
 
 }  // namespace
 
+constexpr double kCacheTexelsPerPixel = 1.4;
+
 std::vector<LightCacheProjection> fit_ipsvi_caches(const Scene& scene, const IpsviSettings& settings) {
   if (settings.cache_size != 0 && (settings.cache_size < 16 || settings.cache_size > 4096)) {
     throw InvalidArgument("cache_size", "must be 0 (automatic) or in [16, 4096]");
@@ -56,7 +58,7 @@ std::vector<LightCacheProjection> fit_ipsvi_caches(const Scene& scene, const Ips
   const Box3 box = scene.volume().world_box();
   const RenderSettings& render = scene.render();
   const std::vector<Plane>& planes = scene.planes();
-  const LightCacheRegion region = visible_cache_region(scene.camera().view(), render.width, render.height, box,
+  LightCacheRegion region = visible_cache_region(scene.camera().view(), render.width, render.height, box,
                                                        planes.data(), int(planes.size()));
   // Automatic: the finest any light asks for, at most three times the
   // image's longer side, so that zooming in cannot grow the cache without
@@ -67,6 +69,12 @@ std::vector<LightCacheProjection> fit_ipsvi_caches(const Scene& scene, const Ips
   // surfaces; 3x and 4x long 0.71 / 4.9 in 8.6 MB; 4x and 3x long 0.56 /
   // 4.2 in 15 MB; the whole box at a texel per pixel 0.48 / 2.5 in 175 MB.)
   const int cap = std::clamp(3 * std::max(render.width, render.height), 16, 2048);
+  // And at most 1.4 texels per image pixel in all (a frustum or orthographic
+  // map): zoomed in, the visible region's light-space footprint holds many
+  // times the image's pixels (the frustum runs deep into the box; engine CT,
+  // 128^2: 1.0x at fov 32, 3.3x at fov 16, 4.9x at fov 3), so the texels grow
+  // past the pixel instead of the memory (docs/ipsvi.md, "A texel budget").
+  region.max_texels = kCacheTexelsPerPixel * double(render.width) * double(render.height);
   int size = settings.cache_size;
   std::vector<LightCacheProjection> out;
   for (const Light& light : scene.lights()) {
