@@ -47,7 +47,7 @@ PY
   done
   if [ "$error" = 1 ]; then
     "$bin" compare "$zoomed" --techniques ipsvi --reference shadow-rays --param shadow-rays.shadow_cache=false \
-      --size "${size}x${size}" --frames 1 -o "$tmp/compare-$fov" > /dev/null
+      --size "${size}x${size}" --frames 1 -o "$tmp/compare-$fov" > /dev/null 2>&1
     de=$(python3 -c 'import json,sys; r=json.load(open(sys.argv[1])); t=[x for x in r["techniques"] if x["technique"]=="ipsvi"][0]; print("%.2f / %.2f" % (t["mean_de"], t["p99_de"]))' "$tmp/compare-$fov/report.json")
     row="$row $de |"
   fi
