@@ -346,9 +346,12 @@ void HalfAngleRenderer::render(const Scene& scene, Image& image, RenderStats* st
 }
 
 std::uint64_t HalfAngleRenderer::aux_bytes() const {
-  std::uint64_t bytes = (light_.size() + blur_.size() + sums_.size()) * sizeof(vec4) + eye_.size() * sizeof(float) +
-                        (eye_plane_.size() + plane_slice_.size()) * sizeof(int) + plane_done_.size();
-  for (const LightRays& lr : lights_) bytes += lr.rays.size() * sizeof(float);
+  // What the buffers hold, not what this frame used: they keep their
+  // capacity when the image shrinks.
+  std::uint64_t bytes = (light_.capacity() + blur_.capacity() + sums_.capacity()) * sizeof(vec4) +
+                        eye_.capacity() * sizeof(float) +
+                        (eye_plane_.capacity() + plane_slice_.capacity()) * sizeof(int) + plane_done_.capacity();
+  for (const LightRays& lr : lights_) bytes += lr.rays.capacity() * sizeof(float);
   return bytes;
 }
 

@@ -132,6 +132,30 @@ TEST(HalfAngle, BuildsLightRaysOncePerLightAndChecksTheBufferSizeInPrepare) {
   }
 }
 
+// aux_bytes counts what the per-pixel buffers hold: after a smaller image
+// they keep their capacity, and the count says so.
+TEST(HalfAngle, AuxBytesCountWhatTheBuffersHoldAfterTheImageShrinks) {
+  Scene scene = floored_spheres(24);
+  const TechniqueInfo& info = find_technique("half-angle");
+  ParameterValues params(info.parameters);
+  params.set("light_buffer_size", 32.0);
+  auto t = info.create();
+  auto render_at = [&](int side) {
+    RenderSettings r = scene.render();
+    r.width = r.height = side;
+    scene.set_render(r);
+    t->prepare(scene, params);
+    Image image;
+    t->render(scene, image);
+    return t->aux_bytes();
+  };
+  const std::uint64_t large = render_at(64);
+  const std::uint64_t small = render_at(16);
+  EXPECT_GE(large, 64u * 64u * sizeof(vec4));  // at least the colour sums
+  // The light buffer's size is fixed here, so nothing was freed or grown.
+  EXPECT_EQ(small, large) << "the buffers still hold a 64x64 image";
+}
+
 // The diffuse blur after each slice covers every texel the light has
 // reached, which is the same as blurring the whole buffer: a dark patch at
 // the buffer's edge, attenuated by the first slice, keeps spreading while the
