@@ -120,6 +120,13 @@ class TransferFunctionTable {
   static constexpr int kDefaultSize = 4096;
 
   TransferFunctionTable() = default;
+  // noexcept moves, so that a std::vector of tables moves them when it grows
+  // (the implicit move is not noexcept: glm's copy constructors under
+  // GLM_FORCE_CTOR_INIT are not).
+  TransferFunctionTable(TransferFunctionTable&&) noexcept = default;
+  TransferFunctionTable& operator=(TransferFunctionTable&&) noexcept = default;
+  TransferFunctionTable(const TransferFunctionTable&) = default;
+  TransferFunctionTable& operator=(const TransferFunctionTable&) = default;
   // value_range in data units (already resolved); unit_length in world units.
   TransferFunctionTable(const TransferFunction& tf, vec2 value_range, float unit_length,
                         int size = kDefaultSize);

@@ -5,9 +5,15 @@
 
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
 namespace penumbra {
 namespace {
+
+// A std::vector of tables (one per light or mesh) moves them when it grows
+// instead of copying them.
+static_assert(std::is_nothrow_move_constructible_v<TransferFunctionTable>);
+static_assert(std::is_nothrow_move_assignable_v<TransferFunctionTable>);
 
 TransferFunction three_point_tf() {
   return TransferFunction({{0.0f, vec3(0.0f), 0.0f}, {0.5f, vec3(1.0f, 0.5f, 0.0f), 0.8f}, {1.0f, vec3(1.0f), 0.2f}});

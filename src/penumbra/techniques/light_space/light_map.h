@@ -136,6 +136,14 @@ template <class Mirror> const LightMapView* light_maps_on_device(const LightMapV
 class LightMap {
  public:
   LightMap() = default;
+  // Moves are declared noexcept so that a std::vector<LightMap> moves its
+  // maps when it grows: the implicit move is not (GLM_FORCE_CTOR_INIT gives
+  // glm's vectors copy constructors that are not noexcept), and the vector
+  // then copied every map's texels.
+  LightMap(LightMap&&) noexcept = default;
+  LightMap& operator=(LightMap&&) noexcept = default;
+  LightMap(const LightMap&) = default;
+  LightMap& operator=(const LightMap&) = default;
   // Checks projection.texel_count() * values_per_texel floats against the
   // memory budget (OutOfMemoryBudget naming `what`) and allocates them.
   LightMap(const std::string& what, const LightProjection& projection, int values_per_texel);

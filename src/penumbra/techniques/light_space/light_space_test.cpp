@@ -11,9 +11,15 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <type_traits>
 
 namespace penumbra {
 namespace {
+
+// A std::vector of maps (one per light or mesh) moves them when it grows
+// instead of copying them.
+static_assert(std::is_nothrow_move_constructible_v<LightMap>);
+static_assert(std::is_nothrow_move_assignable_v<LightMap>);
 
 const Box3 kBox{vec3(-20.0f, -15.0f, -10.0f), vec3(20.0f, 15.0f, 10.0f)};
 
