@@ -26,6 +26,13 @@ using testing::save_test_image;
 
 Scene floored_spheres(int image_size = 48) { return testing::with_floor(testing::lit_spheres(image_size)); }
 
+// A half-angle instance, and its parameters with light_buffer_size 32.
+struct HalfAngleAt32 {
+  ParameterValues params{find_technique("half-angle").parameters};
+  std::unique_ptr<Technique> technique = find_technique("half-angle").create();
+  HalfAngleAt32() { params.set("light_buffer_size", 32.0); }
+};
+
 using testing::mean_de;
 
 TEST(HalfAngle, AlbedoZeroMatchesShadowRaysOnTheSpheres) {
@@ -101,10 +108,9 @@ TEST(HalfAngle, ForwardScatteringReducesToSingleScatteringWithoutACone) {
 // fails in prepare(), naming the parameter.
 TEST(HalfAngle, BuildsLightRaysOncePerLightAndChecksTheBufferSizeInPrepare) {
   Scene scene = floored_spheres(24);
-  const TechniqueInfo& info = find_technique("half-angle");
-  ParameterValues params(info.parameters);
-  params.set("light_buffer_size", 32.0);
-  auto t = info.create();
+  HalfAngleAt32 half_angle;
+  ParameterValues& params = half_angle.params;
+  auto& t = half_angle.technique;
   t->prepare(scene, params);
   EXPECT_EQ(t->rebuilds(), 1u);
   EXPECT_GE(t->aux_bytes(), 32u * 32u * sizeof(Ray)) << "the kept rays are counted";
@@ -136,18 +142,15 @@ TEST(HalfAngle, BuildsLightRaysOncePerLightAndChecksTheBufferSizeInPrepare) {
 // they keep their capacity, and the count says so.
 TEST(HalfAngle, AuxBytesCountWhatTheBuffersHoldAfterTheImageShrinks) {
   Scene scene = floored_spheres(24);
-  const TechniqueInfo& info = find_technique("half-angle");
-  ParameterValues params(info.parameters);
-  params.set("light_buffer_size", 32.0);
-  auto t = info.create();
+  HalfAngleAt32 half_angle;
   auto render_at = [&](int side) {
     RenderSettings r = scene.render();
     r.width = r.height = side;
     scene.set_render(r);
-    t->prepare(scene, params);
+    half_angle.technique->prepare(scene, half_angle.params);
     Image image;
-    t->render(scene, image);
-    return t->aux_bytes();
+    half_angle.technique->render(scene, image);
+    return half_angle.technique->aux_bytes();
   };
   const std::uint64_t large = render_at(64);
   const std::uint64_t small = render_at(16);

@@ -25,6 +25,15 @@
 namespace penumbra {
 namespace {
 
+// ipsvi at its defaults through `renderer`; `reference` gets exact shadow rays.
+Image ipsvi_against_exact(const Scene& scene, IpsviRenderer& renderer, Image& reference) {
+  reference = testing::render_with(scene, "shadow-rays", {{"shadow_cache", false}});
+  renderer.prepare(scene, IpsviSettings{});
+  Image ipsvi;
+  renderer.render(scene, ipsvi);
+  return ipsvi;
+}
+
 Scene grazing_cut_engine() {
   Scene scene = testing::repository_scene("scenes/engine.json", 128);
   scene.set_planes({});
@@ -84,11 +93,9 @@ TEST(IpsviFloorShadow, EdgesShowNoBrightOutline) {
   camera.up = vec3(0.0f, 0.0f, 1.0f);
   camera.fov_deg = 35.0f;
   scene.set_camera(camera);
-  const Image reference = testing::render_with(scene, "shadow-rays", {{"shadow_cache", false}});
+  Image reference;
   IpsviRenderer renderer;
-  renderer.prepare(scene, IpsviSettings{});
-  Image ipsvi;
-  renderer.render(scene, ipsvi);
+  const Image ipsvi = ipsvi_against_exact(scene, renderer, reference);
   testing::save_test_image(ipsvi, "ipsvi-floor-shadow-edges.png");
   Scene volume_only = scene;
   volume_only.set_planes({});
@@ -151,11 +158,9 @@ TEST(IpsviZoom, CacheMemoryHoldsAndErrorStaysSmallDownToFov3) {
     Camera camera = scene.camera();
     camera.fov_deg = fov;
     scene.set_camera(camera);
-    const Image reference = testing::render_with(scene, "shadow-rays", {{"shadow_cache", false}});
+    Image reference;
     IpsviRenderer renderer;
-    renderer.prepare(scene, IpsviSettings{});
-    Image ipsvi;
-    renderer.render(scene, ipsvi);
+    const Image ipsvi = ipsvi_against_exact(scene, renderer, reference);
     const DeltaEStats de = delta_e_stats(ipsvi, reference);
     const std::uint64_t bytes = renderer.aux_bytes();
     if (fov == 32.0f) bytes_at_32 = bytes;
