@@ -209,9 +209,9 @@ TEST(DeviceMirror, MirrorsTheMeshesAsMedia) {
     resources.update(scene);
     const RenderView view = resources.view(scene);
     DeviceCache cache(host_memory());
-    const auto mirror_once = [&] {
+    const auto mirror_once = [&](const RenderView& as_of) {
       cache.begin_frame();
-      DeviceMirror mirror(cache, view);
+      DeviceMirror mirror(cache, as_of);
       const MeshesView d = mirror_meshes(mirror, host);
       cache.end_frame();
       return d;
@@ -267,8 +267,25 @@ TEST(DeviceMirror, MirrorsTheMeshesAsMedia) {
     cache.end_frame();
     const std::uint64_t uploads = cache.uploads();
     EXPECT_GT(uploads, 0u);
-    mirror_once();
+    mirror_once(view);
     EXPECT_EQ(cache.uploads(), uploads) << "an unchanged scene uploads the meshes once";
+    // A light, material, camera or render edit leaves the meshes' arrays;
+    // a mesh, TF or data edit uploads them again.
+    RenderView edited = view;
+    edited.versions.lights += 1;
+    edited.versions.material += 1;
+    edited.versions.camera += 1;
+    edited.versions.render += 1;
+    edited.structures += 1;
+    mirror_once(edited);
+    EXPECT_EQ(cache.uploads(), uploads) << "a light or material edit uploads no mesh array";
+    for (std::uint64_t SceneVersions::*part :
+         {&SceneVersions::meshes, &SceneVersions::transfer_function, &SceneVersions::data}) {
+      const std::uint64_t before = cache.uploads();
+      edited.versions.*part += 1;
+      mirror_once(edited);
+      EXPECT_GT(cache.uploads(), before) << "an edit of the meshes, the TF or the data uploads them again";
+    }
   }
 }
 

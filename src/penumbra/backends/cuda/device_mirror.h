@@ -7,7 +7,8 @@
 // Versions: the volume and its shading normals follow the data; the
 // macrocell grid, majorants and TF tables the data and the TF; a
 // technique's own structures everything but the camera, and the technique's
-// rebuilds() count (RenderView::structures).
+// rebuilds() count (RenderView::structures); the meshes' arrays the meshes,
+// the data and the TF.
 //
 // Host code only; used by the .cu units of the techniques.
 #include "penumbra/backends/cuda/device_cache.h"
@@ -33,6 +34,10 @@ class DeviceMirror {
       all = mix_bits(all ^ (part + 0x9e3779b97f4a7c15ull));
     }
     structures_version_ = all;
+    // MeshMedia (render/mesh_media.h) rebuilds its arrays when the meshes
+    // change or the TF's unit length does, which follows the TF and the
+    // volume's spacing.
+    meshes_version_ = mix_bits(tf_version_ ^ mix_bits(s.meshes + 0x51ed27));
   }
 
   int light_count() const { return host_.light_count; }
@@ -40,6 +45,12 @@ class DeviceMirror {
   // A technique structure: uploaded when its version changed.
   template <class T> const T* structure(const T* host, std::size_t count, const char* what = "technique structures") {
     return static_cast<const T*>(cache_.persistent(host, count * sizeof(T), structures_version_, what));
+  }
+  // An array of the scene's meshes as media (mesh_mirror.h): uploaded when
+  // the meshes, the TF or the data changed, not on a light, camera or
+  // material edit.
+  template <class T> const T* mesh_array(const T* host, std::size_t count, const char* what) {
+    return static_cast<const T*>(cache_.persistent(host, count * sizeof(T), meshes_version_, what));
   }
   // Copied to the device for this frame only (views, small arrays).
   template <class T> const T* frame(const T* host, std::size_t count, const char* what = "per-frame data") {
@@ -49,10 +60,18 @@ class DeviceMirror {
     return frame(host.data(), host.size(), what);
   }
 
-  // A grid of voxels (the volume, a shadow cache): its data mirrored.
+  // A grid of voxels (the volume, a shadow cache, a mesh's detail texture):
+  // its data mirrored.
+  enum class Grid : std::uint8_t { SceneData, Structure, MeshDetail };
   VolumeView volume(VolumeView grid, bool scene_data, const char* what) {
+    return volume(grid, scene_data ? Grid::SceneData : Grid::Structure, what);
+  }
+  VolumeView volume(VolumeView grid, Grid kind, const char* what) {
     const std::size_t bytes = std::size_t(grid.dims.x) * grid.dims.y * grid.dims.z * voxel_size(grid.type);
-    grid.data = cache_.persistent(grid.data, bytes, scene_data ? data_version_ : structures_version_, what);
+    const std::uint64_t version = kind == Grid::SceneData    ? data_version_
+                                  : kind == Grid::MeshDetail ? meshes_version_
+                                                             : structures_version_;
+    grid.data = cache_.persistent(grid.data, bytes, version, what);
     return grid;
   }
   // Per-light grids (the shadow caches), as a device array of views.
@@ -108,6 +127,7 @@ class DeviceMirror {
   std::uint64_t data_version_ = 0;
   std::uint64_t tf_version_ = 0;
   std::uint64_t structures_version_ = 0;
+  std::uint64_t meshes_version_ = 0;
   std::unordered_map<const RenderView*, const RenderView*> views_;
 };
 

@@ -1,8 +1,9 @@
 #pragma once
 // The scene's meshes as media (render/mesh_media.h) on the device: each
 // material's detail (its noise table or texture volume), TF tables and BVH
-// mirrored as technique structures (uploaded again when the meshes, or
-// anything else a structure follows, change), the views copied for the frame.
+// mirrored (DeviceMirror::mesh_array: uploaded again when the meshes, the TF
+// or the data change, what MeshMedia rebuilds them on), the views copied for
+// the frame.
 // Host code only, like DeviceMirror; used by pathtrace's CUDA unit.
 #include "penumbra/backends/cuda/device_mirror.h"
 #include "penumbra/render/mesh_media.h"
@@ -14,15 +15,15 @@ namespace penumbra {
 namespace mesh_mirror_detail {
 
 inline DetailView detail(DeviceMirror& m, DetailView d) {
-  if (d.noise) d.noise = m.structure(d.noise, 1, "a mesh's noise table");
-  if (d.texture.data) d.texture = m.volume(d.texture, false, "a mesh's detail texture");
+  if (d.noise) d.noise = m.mesh_array(d.noise, 1, "a mesh's noise table");
+  if (d.texture.data) d.texture = m.volume(d.texture, DeviceMirror::Grid::MeshDetail, "a mesh's detail texture");
   return d;
 }
 
 inline TransferFunctionView table(DeviceMirror& m, TransferFunctionView tf) {
   if (tf.size > 0) {
-    tf.entries = m.structure(tf.entries, std::size_t(tf.size), "a mesh's transfer function table");
-    tf.sigma = m.structure(tf.sigma, std::size_t(tf.size), "a mesh's transfer function table");
+    tf.entries = m.mesh_array(tf.entries, std::size_t(tf.size), "a mesh's transfer function table");
+    tf.sigma = m.mesh_array(tf.sigma, std::size_t(tf.size), "a mesh's transfer function table");
   }
   return tf;
 }
@@ -44,8 +45,8 @@ inline MeshesView mirror_meshes(DeviceMirror& m, const MeshesView& host) {
   if (host.shapes) {
     std::vector<MeshBvhView> shapes(host.shapes, host.shapes + host.count);
     for (MeshBvhView& s : shapes) {
-      s.nodes = m.structure(s.nodes, std::size_t(s.node_count), "a mesh's BVH");
-      s.triangles = m.structure(s.triangles, std::size_t(s.triangle_count), "a mesh's BVH");
+      s.nodes = m.mesh_array(s.nodes, std::size_t(s.node_count), "a mesh's BVH");
+      s.triangles = m.mesh_array(s.triangles, std::size_t(s.triangle_count), "a mesh's BVH");
     }
     d.shapes = m.frame(shapes, "the meshes' BVHs");
   }

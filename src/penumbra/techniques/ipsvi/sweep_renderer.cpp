@@ -59,7 +59,7 @@ std::vector<LightCacheProjection> fit_ipsvi_caches(const Scene& scene, const Ips
   const RenderSettings& render = scene.render();
   const std::vector<Plane>& planes = scene.planes();
   LightCacheRegion region = visible_cache_region(scene.camera().view(), render.width, render.height, box,
-                                                       planes.data(), int(planes.size()));
+                                                 planes.data(), int(planes.size()));
   // Automatic: the finest any light asks for, at most three times the
   // image's longer side, so that zooming in cannot grow the cache without
   // bound; an octahedral map (light inside the box) covers every direction,
