@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 namespace penumbra {
 namespace {
@@ -125,7 +126,7 @@ ParameterValues quick_parameters(const TechniqueInfo& info) {
 // prepared on the edited scene.
 struct SceneEdit {
   const char* name;
-  void (*apply)(Scene&);
+  std::function<void(Scene&)> apply;
 };
 
 // Renders `scene` with a live instance of `info`, then again after each edit
@@ -158,6 +159,16 @@ void expect_edits_give_a_fresh_image(const TechniqueInfo& info, Scene scene, con
   EXPECT_GE(2 * changed, int(edits.size())) << label << " x " << info.name << ": edits that changed the image";
 }
 
+// The edit that sets the image to width x height.
+std::function<void(Scene&)> resize_image(int width, int height) {
+  return [width, height](Scene& s) {
+    RenderSettings r = s.render();
+    r.width = width;
+    r.height = height;
+    s.set_render(r);
+  };
+}
+
 class SceneEdits : public ::testing::TestWithParam<int> {};
 
 TEST_P(SceneEdits, GiveTheImageOfAFreshTechnique) {
@@ -180,13 +191,7 @@ TEST_P(SceneEdits, GiveTheImageOfAFreshTechnique) {
          TransferFunction tf = testing::step_tf(0.35f, vec3(0.5f, 0.8f, 0.9f), 0.25f);
          s.set_transfer_function(tf);
        }},
-      {"image size",
-       [](Scene& s) {
-         RenderSettings r = s.render();
-         r.width = 20;
-         r.height = 28;
-         s.set_render(r);
-       }},
+      {"image size", resize_image(20, 28)},
       {"material",
        [](Scene& s) {
          Material m = s.material();
@@ -227,13 +232,7 @@ TEST_P(SceneEdits, GiveTheImageOfAFreshTechnique) {
          s.set_volume(make_procedural_volume("marschner-lobb", ivec3(28, 34, 30)));
          s.set_camera(Camera::framing(s.volume().world_box()));
        }},
-      {"larger image",
-       [](Scene& s) {
-         RenderSettings r = s.render();
-         r.width = 30;
-         r.height = 26;
-         s.set_render(r);
-       }},
+      {"larger image", resize_image(30, 26)},
   };
   const MatrixScene& ms = kScenes[GetParam()];
   for (const TechniqueInfo& info : technique_registry()) {
