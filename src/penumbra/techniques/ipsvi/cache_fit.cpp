@@ -61,6 +61,16 @@ LightCacheRegion visible_cache_region(const CameraView& camera, int width, int h
   const auto sides = frustum(camera, aspect);
   LightCacheRegion region;
   region.long_direction = camera.forward;
+  region.bounds.assign(sides.begin(), sides.end());
+  for (int axis = 0; axis < 3; ++axis) {
+    vec4 lower(0.0f), upper(0.0f);
+    lower[axis] = 1.0f;
+    lower.w = -box.lower[axis];
+    upper[axis] = -1.0f;
+    upper.w = box.upper[axis];
+    region.bounds.push_back(lower);
+    region.bounds.push_back(upper);
+  }
   // Every vertex of box-and-frustum lies on a box face, except the eye when
   // it is inside the box.
   const vec3 lo = box.lower, hi = box.upper;

@@ -155,5 +155,58 @@ TEST(CacheFit, CoversVisibleFloorPointsShadowedFromOffScreen) {
   EXPECT_LT(without.points.size() + 1, region.points.size() + region.plane_points.size());
 }
 
+// A light inside the box gets an octahedral map. Where the light lies outside
+// what the camera sees of the box, the map holds only the directions toward
+// that, turned so that they lie about its centre: every visible point of the
+// box lands inside, on a texel whose light ray points at it, and zoomed in the
+// map is a small part of the sphere (the visible floor's points are left to
+// their own light rays, plane_light in ipsvi_ray.h). Where the light lies in
+// view every direction is needed: the whole map, within its own budget.
+TEST(CacheFit, AnOctahedralMapHoldsTheDirectionsTowardWhatTheCameraSees) {
+  const Plane floor{vec3(0.0f, 0.0f, -12.0f), vec3(0.0f, 0.0f, 1.0f), vec3(0.8f)};
+  const double map_budget = 4.0 * kFitWidth * kFitHeight;
+  int parts_at_3 = 0;
+  for (const vec3& position : {vec3(-15.0f, 10.0f, 5.0f), vec3(0.0f, 0.0f, 0.0f), vec3(8.5f, -3.5f, 2.0f)}) {
+    const Light light = testing::point_light(position);
+    for (const float fov : {32.0f, 9.0f, 3.0f}) {
+      const CameraView view = zoomed(fov).view();
+      LightCacheRegion region = visible_cache_region(view, kFitWidth, kFitHeight, kFitBox, &floor, 1);
+      region.max_texels = 1.4 * kFitWidth * kFitHeight;  // for frustum maps only
+      region.max_map_texels = map_budget;
+      const LightCacheProjection p = fit_light_cache_projection(light, kFitBox, region, 0, 3 * kFitWidth, true);
+      ASSERT_EQ(p.mapping, LightMapping::Octahedral);
+      const bool whole = p.lower == vec2(0.0f) && p.scale.x == float(p.size) && p.size == p.rows;
+      const bool in_view = seen(view, position);
+      std::printf("light (%g, %g, %g)%s, fov %4.1f: %s %d x %d, %.0f texels across the sphere\n", position.x,
+                  position.y, position.z, in_view ? " in view" : "", fov, whole ? "whole map" : "part", p.size,
+                  p.rows, double(p.scale.x));
+      const double texels = double(p.size) * double(p.rows);
+      // (A part's rectangle is aligned to whole texels: a row and a column more.)
+      EXPECT_LE(texels, map_budget + (whole ? 0.0 : double(p.size + p.rows + 1))) << "fov " << fov;
+      EXPECT_EQ(whole, in_view) << "fov " << fov;
+      if (fov == 3.0f && !whole) {
+        ++parts_at_3;
+        // Finer texels than the whole map's in the same budget.
+        EXPECT_GT(double(p.scale.x), 1.25 * std::sqrt(map_budget)) << "zoomed in, a part of the sphere";
+      }
+      int seen_points = 0;
+      auto check = [&](vec3 x) {
+        const vec3 q = p.project(x);
+        ASSERT_TRUE(inside_cache(p, x)) << "fov " << fov << ", point " << x.x << " " << x.y << " " << x.z;
+        const vec3 along = p.texel_ray(vec2(q)).direction;
+        ASSERT_GT(glm::dot(along, glm::normalize(x - position)), 0.99999f) << "fov " << fov;
+        ++seen_points;
+      };
+      for (int i = 0; i < 40 * 40 * 40; ++i) {
+        const vec3 f((float(i % 40) + 0.5f) / 40.0f, (float(i / 40 % 40) + 0.5f) / 40.0f, (float(i / 1600) + 0.5f) / 40.0f);
+        const vec3 x = kFitBox.lower + f * kFitBox.extent();
+        if (seen(view, x)) check(x);
+      }
+      EXPECT_GT(seen_points, 20);
+    }
+  }
+  EXPECT_EQ(parts_at_3, 2);  // the two lights out of view
+}
+
 }  // namespace
 }  // namespace penumbra

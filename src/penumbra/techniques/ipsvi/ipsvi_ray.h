@@ -272,7 +272,10 @@ PENUMBRA_HD inline vec3 ipsvi_visibility(const IpsviKernel& k, const CachedLight
 // bilinear read spreads the edge over that footprint, seen as a one-texel
 // bright line along the shadow's inside (issue 21). Where the four texels
 // disagree (kPlaneEdgeSpread) q's own light ray is marched to the box
-// instead, as shadow-rays does; the diffuse part stays the cache's.
+// instead, as shadow-rays does; the diffuse part stays the cache's. So does
+// a plane hit outside the cache whose light ray crosses the box: an
+// octahedral map holds only the directions toward the visible part of the
+// box (cache_fit.h), and a floor point may lie in another direction.
 template <class Sampler>
 PENUMBRA_HD CachedLight plane_light(const IpsviKernel& k, const Sampler& sampler, vec3 q, RayCacheState& st,
                                     IpsviRayCounts& counts) {
@@ -280,10 +283,13 @@ PENUMBRA_HD CachedLight plane_light(const IpsviKernel& k, const Sampler& sampler
   // Plane hits march their segments themselves (they are not recorded).
   SegmentTape* const tape = st.tape;
   st.tape = nullptr;
-  CachedLight light = ipsvi_light_at(k, sampler, q, k.projection.project(q), 0.0f, vec3(0.0f), st, counts, &spread);
+  const vec3 proj = k.projection.project(q);
+  CachedLight light = ipsvi_light_at(k, sampler, q, proj, 0.0f, vec3(0.0f), st, counts, &spread);
   st.tape = tape;
-  if (!k.piecewise || !(spread > kPlaneEdgeSpread)) return light;
   const LightSample ls = sample_light(k.view->lights[0], q);
+  const bool outside = !k.cache.covers(vec2(proj)) &&
+                       !volume_interval(*k.shadow, Ray{q, ls.to_light}, 0.0f, ls.distance).empty();
+  if (!outside && (!k.piecewise || !(spread > kPlaneEdgeSpread))) return light;
   std::uint64_t& samples = counts.light_samples;
   const OpticalDepth tau =
       k.paper ? light_segment_depth<true>(*k.shadow, sampler, q, ls.to_light, ls.distance, k.scattering, samples)

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cmath>
+#include <vector>
 
 namespace penumbra {
 namespace {
@@ -46,6 +47,85 @@ struct Rect {
   }
   bool empty() const { return !(lo.x <= hi.x && lo.y <= hi.y); }
 };
+
+// A fitted octahedral map: its frame (side_u, side_v, axis) and the
+// rectangle of the map (in [0, 1]^2) that holds the directions from `light`
+// toward the visible part of the box. That part is convex, so its directions
+// form a cone spanned by its corners, within a hemisphere when the light lies
+// outside it. The map's axis lies about the centre of the smallest cone
+// holding the corner directions, so that they lie about the map's centre,
+// away from its folded outer edges. Within one octant the map is a
+// central projection onto a face of the octahedron (folded affinely below
+// z = 0), so the arc between two corners' directions maps to a straight
+// segment there, and the cone's image is bounded by such segments between the
+// points where they cross the planes x = 0, y = 0 and z = 0 of the frame.
+// Every pair of corners is taken, which includes every edge. The whole map
+// (and the world's frame) where the light lies in the visible part of the
+// box (all directions are needed), the region is not known, or an arc crosses
+// x = 0 or y = 0 below z = 0, the map's folded outer edges, across which the
+// directions continue on the opposite side. Visible planes are left out:
+// their points' light rays may run outside the map, and ipsvi marches those
+// (plane_light in ipsvi_ray.h).
+struct OctahedralFit {
+  Rect rect{vec2(0.0f), vec2(1.0f)};
+  vec3 u{1.0f, 0.0f, 0.0f}, v{0.0f, 1.0f, 0.0f}, axis{0.0f, 0.0f, 1.0f};
+  bool whole() const { return rect.lo == vec2(0.0f) && rect.hi == vec2(1.0f); }
+};
+
+OctahedralFit fit_octahedral(vec3 light, const LightCacheRegion& region) {
+  const OctahedralFit whole;
+  if (region.points.empty() || region.bounds.empty()) return whole;
+  bool inside = true;
+  for (const vec4& h : region.bounds) inside = inside && glm::dot(vec3(h), light) + h.w >= 0.0f;
+  if (inside) return whole;
+  std::vector<vec3> directions;
+  vec3 mean(0.0f);
+  for (const vec3& c : region.points) {
+    const float l = glm::length(c - light);
+    if (!(l > 0.0f)) return whole;
+    directions.push_back((c - light) / l);
+    mean += directions.back();
+  }
+  if (!(glm::length(mean) > 1e-3f)) return whole;
+  // The axis: about the centre of the smallest cone around the directions,
+  // stepping from their mean toward the farthest one by shrinking steps
+  // (Badoiu and Clarkson's iteration for the smallest enclosing ball).
+  OctahedralFit fit;
+  fit.axis = glm::normalize(mean);
+  for (int k = 1; k <= 200; ++k) {
+    const vec3* farthest = &directions[0];
+    for (const vec3& d : directions) {
+      if (glm::dot(fit.axis, d) < glm::dot(fit.axis, *farthest)) farthest = &d;
+    }
+    fit.axis = glm::normalize(fit.axis + (*farthest - fit.axis) / float(k + 1));
+  }
+  complete_frame(fit.axis, vec3(0.0f), fit.u, fit.v);
+  auto local = [&](vec3 c) {
+    const vec3 q = c - light;
+    return vec3(glm::dot(q, fit.u), glm::dot(q, fit.v), glm::dot(q, fit.axis));
+  };
+  Rect r;
+  bool folded = false;
+  const std::size_t n = region.points.size();
+  for (std::size_t i = 0; i < n && !folded; ++i) {
+    const vec3 a = local(region.points[i]);
+    r.add(LightCacheProjection::octahedral_encode(a));
+    for (std::size_t j = i + 1; j < n; ++j) {
+      const vec3 b = local(region.points[j]);
+      for (int axis = 0; axis < 3; ++axis) {
+        if ((a[axis] < 0.0f) == (b[axis] < 0.0f)) continue;
+        vec3 c = a + (b - a) * (a[axis] / (a[axis] - b[axis]));
+        c[axis] = 0.0f;
+        if (axis < 2 && c.z < 0.0f) folded = true;
+        r.add(LightCacheProjection::octahedral_encode(c));
+      }
+    }
+  }
+  if (folded || r.empty()) return whole;
+  fit.rect.lo = glm::max(r.lo - vec2(kMargin), vec2(0.0f));
+  fit.rect.hi = glm::min(r.hi + vec2(kMargin), vec2(1.0f));
+  return fit;
+}
 
 }  // namespace
 
@@ -92,16 +172,49 @@ LightCacheProjection fit_light_cache_projection(const Light& light, const Box3& 
     p.axis = vec3(0.0f, 0.0f, 1.0f);
     p.side_u = vec3(1.0f, 0.0f, 0.0f);
     p.side_v = vec3(0.0f, 1.0f, 0.0f);
-    p.size = size;
+    const OctahedralFit fit = trim ? fit_octahedral(light.position, region) : OctahedralFit{};
+    const Rect& need = fit.rect;
+    const vec2 extent = need.hi - need.lo;
+    const float longest = glm::max(extent.x, extent.y);
+    if (fit.whole()) {  // the whole map, n x n, in the world's frame
+      p.size = size;
+      if (size == 0) {
+        // The light sees the volume at up to its half-diagonal, however close
+        // it is to the centre (measuring at the centre distance, 0 for a light
+        // at the centre, gave a 16^2 cache and radial light leaks).
+        const float reach = glm::max(0.5f * diagonal, glm::length(box.center() - light.position));
+        const float pixel = glm::max(region.pixel, 1e-6f);
+        p.size = glm::clamp(int(std::ceil(reach * 3.5449077f / pixel)), 16, cap);
+        if (region.max_map_texels > 0.0 && double(p.size) * double(p.size) > region.max_map_texels) {
+          p.size = glm::max(16, int(std::floor(std::sqrt(region.max_map_texels))));
+        }
+      }
+      p.rows = p.size;
+      p.scale = vec2(float(p.size));
+      return p;
+    }
+    // A part of the map: texels of the same width as over the whole map,
+    // at most `cap` along the longer side and (automatic) within the texel
+    // budget, their size snapped and the rectangle aligned to whole texels.
+    p.axis = fit.axis;
+    p.side_u = fit.u;
+    p.side_v = fit.v;
+    float across = float(size) / longest;  // texels across the whole map
     if (size == 0) {
-      // The light sees the volume at up to its half-diagonal, however close
-      // it is to the centre (measuring at the centre distance, 0 for a light
-      // at the centre, gave a 16^2 cache and radial light leaks).
       const float reach = glm::max(0.5f * diagonal, glm::length(box.center() - light.position));
       const float pixel = glm::max(region.pixel, 1e-6f);
-      p.size = glm::clamp(int(std::ceil(reach * 3.5449077f / pixel)), 16, cap);
+      across = glm::clamp(glm::ceil(glm::min(reach * 3.5449077f / pixel, 1e7f)), 16.0f / longest, float(cap) / longest);
+      const double texels = double(across) * double(across) * double(extent.x) * double(extent.y);
+      const double budget = region.max_map_texels;
+      if (budget > 0.0 && texels > budget) {
+        across = glm::max(16.0f / longest, across * float(std::sqrt(budget / texels)));
+      }
+      across = 1.0f / snap_up(1.0f / across);
     }
-    p.rows = p.size;
+    p.scale = vec2(across);
+    p.lower = glm::floor(need.lo * across) / across;
+    p.size = glm::max(1, int(std::ceil((need.hi.x - p.lower.x) * across)));
+    p.rows = glm::max(1, int(std::ceil((need.hi.y - p.lower.y) * across)));
     return p;
   }
 

@@ -11,7 +11,9 @@
 //   point light outside the box: perspective projection from the light, a
 //                      frustum toward the box; depth = distance to the light
 //   point light inside or beside the box (a frustum would need more than a
-//                      hemisphere): octahedral map of all directions
+//                      hemisphere): octahedral map of the directions, all of
+//                      them or (fitted) the rectangle of the map that holds
+//                      the directions toward what the camera sees
 //
 // The rectangle (orthographic and perspective) is the paper's "light frustum
 // adaptation" (section 5.2): make_light_cache_projection fits it to the whole
@@ -35,11 +37,13 @@ struct LightCacheProjection {
   int size = 1;  // texels along side_u
   int rows = 1;  // texels along side_v (size for the octahedral map)
   vec3 origin{0.0f};  // orthographic: corner of the projection square at depth 0; else the light position
-  vec3 axis{0.0f, 0.0f, 1.0f};  // orthographic: the light's travel direction; perspective: frustum axis
+  vec3 axis{0.0f, 0.0f, 1.0f};  // orthographic: the light's travel direction; perspective: frustum axis;
+                                // octahedral: the map's z axis (its centre's direction)
   vec3 side_u{1.0f, 0.0f, 0.0f};
   vec3 side_v{0.0f, 1.0f, 0.0f};
-  vec2 scale{1.0f};  // texels per unit along side_u, side_v: orthographic world units, perspective tan units
-  vec2 lower{0.0f};  // perspective: the tan coordinates of texel corner (0, 0)
+  vec2 scale{1.0f};  // texels per unit along side_u, side_v: orthographic world units, perspective tan
+                     // units, octahedral map units (the whole map is [0, 1]^2)
+  vec2 lower{0.0f};  // perspective: the tan coordinates of texel corner (0, 0); octahedral: its map coordinates
   float max_depth = 1.0f;        // the largest depth of a point of the box
 
   // (u, v) in texel units and the depth. Points the buffer does not cover get
@@ -75,7 +79,12 @@ struct LightCacheProjection {
     }
   }
   // The octahedral map's (u, v, depth) of q = p - origin.
-  PENUMBRA_HD vec3 octahedral_texel(vec3 q) const { return vec3(octahedral_encode(q) * float(size), glm::length(q)); }
+  // q in the map's frame (side_u, side_v, axis): the whole map's is the
+  // world's; a fitted map turns its axis toward the directions it holds.
+  PENUMBRA_HD vec3 octahedral_texel(vec3 q) const {
+    const vec3 local(glm::dot(q, side_u), glm::dot(q, side_v), glm::dot(q, axis));
+    return vec3((octahedral_encode(local) - lower) * scale, glm::length(q));
+  }
   PENUMBRA_HD vec3 project(vec3 p) const { return project<ScalarLanes>(p); }
 
   // The light ray through a buffer position: its origin lies at depth 0 and
@@ -91,7 +100,8 @@ struct LightCacheProjection {
       }
       case LightMapping::Octahedral: break;
     }
-    return Ray{origin, octahedral_decode(uv / float(size))};
+    const vec3 d = octahedral_decode(uv / scale + lower);
+    return Ray{origin, d.x * side_u + d.y * side_v + d.z * axis};
   }
 
   // World size of one texel along side_u and side_v at a depth (for filters
@@ -102,7 +112,7 @@ struct LightCacheProjection {
       case LightMapping::Perspective: return vec2(glm::max(depth, 1e-6f)) / scale;
       case LightMapping::Octahedral: break;
     }
-    return vec2(glm::max(depth, 1e-6f) * 3.5449077f / float(size));  // sqrt(4 pi) / size
+    return vec2(glm::max(depth, 1e-6f) * 3.5449077f) / scale;  // sqrt(4 pi) / texels across the whole map
   }
 
   // Octahedral map (Meyer et al. 2010) of a direction to [0, 1]^2 and back.
@@ -133,21 +143,28 @@ struct LightCacheRegion {
   std::vector<vec3> points;        // the hull of the visible part of the box; empty: the whole box
   vec3 centroid{0.0f};             // their centre
   std::vector<vec3> plane_points;  // corners of the visible parts of planes (their light rays cross the box)
+  std::vector<vec4> bounds;        // half-spaces dot(n, x) + d >= 0 whose intersection is the visible part of
+                                   // the box (empty: not known)
   vec3 long_direction{0.0f};       // texels may be longer along this direction's light-space image
   float max_aspect = 4.0f;         // at most this much longer
   float pixel = 0.0f;              // world size of a pixel at the centroid (sizes the cache when size is 0)
   double max_texels = 0.0;         // automatic size: at most this many texels (0: no bound but max_size)
+  double max_map_texels = 0.0;     // the same for an octahedral map of all directions
 };
 
 // The projection of `light` fitted to `region`'s light-space bounding
 // rectangle (within the box's): `size` texels per side, or with 0 texels a
 // pixel wide across the rectangle's short side, at most `max_size` (and with
 // region.max_texels, texels coarser by the same factor on both sides until
-// the grid holds at most that many; octahedral maps are not bounded so). With
-// `trim`, where texels longer than max_aspect would be needed along one side,
-// the other side gets only the texels (at least 16) it needs to cover the
-// rectangle at a texel max_aspect times shorter, instead of `size`. The
-// mapping, the axis and the depths depend only on the light and the box.
+// the grid holds at most that many). With `trim`, where texels longer than
+// max_aspect would be needed along one side, the other side gets only the
+// texels (at least 16) it needs to cover the rectangle at a texel max_aspect
+// times shorter, instead of `size`. An octahedral map covers all directions,
+// or with `trim` the rectangle of the map that holds the directions toward
+// the region (the whole map where the light lies in the visible part of the
+// box, or the directions straddle one of the map's folded edges), with square
+// texels, `size` along its longer side. The mapping, the axis and the depths
+// depend only on the light and the box.
 LightCacheProjection fit_light_cache_projection(const Light& light, const Box3& box, const LightCacheRegion& region,
                                                 int size, int max_size, bool trim = false);
 

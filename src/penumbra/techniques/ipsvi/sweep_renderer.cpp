@@ -50,6 +50,13 @@ SegmentTape& thread_tape(int limit) {
 }  // namespace
 
 constexpr double kCacheTexelsPerPixel = 1.4;
+// An octahedral map of all directions (a point light in the part of the box
+// the camera sees) covers the whole sphere around the light, toward parts
+// of the region at every distance: at most 4 texels per image pixel (twice
+// the side of a square image), which leaves the engine CT's map at fov 32
+// as it was (docs/ipsvi.md, "A light inside the box"). A map fitted to part
+// of the sphere keeps kCacheTexelsPerPixel.
+constexpr double kMapTexelsPerPixel = 4.0;
 
 std::vector<LightCacheProjection> fit_ipsvi_caches(const Scene& scene, const IpsviSettings& settings) {
   if (settings.cache_size != 0 && (settings.cache_size < 16 || settings.cache_size > 4096)) {
@@ -62,25 +69,30 @@ std::vector<LightCacheProjection> fit_ipsvi_caches(const Scene& scene, const Ips
                                                  planes.data(), int(planes.size()));
   // Automatic: the finest any light asks for, at most three times the
   // image's longer side, so that zooming in cannot grow the cache without
-  // bound; an octahedral map (light inside the box) covers every direction,
-  // the box's whole surface: twice that. (Engine CT at fov 3, 128^2, against
-  // shadow-rays: a cap of 2x with texels up to 8x long gave mean / p99 dE
-  // 0.85 / 5.7 in 5.3 MB, stripes along the long texels on slanted
-  // surfaces; 3x and 4x long 0.71 / 4.9 in 8.6 MB; 4x and 3x long 0.56 /
-  // 4.2 in 15 MB; the whole box at a texel per pixel 0.48 / 2.5 in 175 MB.)
+  // bound; an octahedral map (light inside the box) of every direction,
+  // the box's whole surface: twice that, and kMapTexelsPerPixel in all.
+  // (Engine CT at fov 3, 128^2, against shadow-rays: a cap of 2x with
+  // texels up to 8x long gave mean / p99 dE 0.85 / 5.7 in 5.3 MB, stripes
+  // along the long texels on slanted surfaces; 3x and 4x long 0.71 / 4.9 in
+  // 8.6 MB; 4x and 3x long 0.56 / 4.2 in 15 MB; the whole box at a texel per
+  // pixel 0.48 / 2.5 in 175 MB.)
   const int cap = std::clamp(3 * std::max(render.width, render.height), 16, 2048);
-  // And at most 1.4 texels per image pixel in all (a frustum or orthographic
-  // map): zoomed in, the visible region's light-space footprint holds many
-  // times the image's pixels (the frustum runs deep into the box; engine CT,
-  // 128^2: 1.0x at fov 32, 3.3x at fov 16, 4.9x at fov 3), so the texels grow
-  // past the pixel instead of the memory (docs/ipsvi.md, "A texel budget").
+  // And at most 1.4 texels per image pixel in all (a frustum, orthographic
+  // or fitted octahedral map): zoomed in, the visible region's light-space
+  // footprint holds many times the image's pixels (the frustum runs deep
+  // into the box; engine CT, 128^2: 1.0x at fov 32, 3.3x at fov 16, 4.9x at
+  // fov 3), so the texels grow past the pixel instead of the memory
+  // (docs/ipsvi.md, "A texel budget").
   region.max_texels = kCacheTexelsPerPixel * double(render.width) * double(render.height);
+  region.max_map_texels = kMapTexelsPerPixel * double(render.width) * double(render.height);
   int size = settings.cache_size;
   std::vector<LightCacheProjection> out;
   for (const Light& light : scene.lights()) {
     if (light.type == LightType::Environment) continue;  // not a single-scattering light (light.h)
     out.push_back(fit_light_cache_projection(light, box, region, 0, cap, true));
-    if (out.back().mapping == LightMapping::Octahedral) out.back() = fit_light_cache_projection(light, box, region, 0, 2 * cap);
+    if (out.back().mapping == LightMapping::Octahedral) {
+      out.back() = fit_light_cache_projection(light, box, region, 0, 2 * cap, true);
+    }
     if (settings.cache_size == 0) size = std::max(size, texels_per_side(out.back()));
   }
   for (std::size_t i = 0, k = 0; i < scene.lights().size(); ++i) {

@@ -59,10 +59,12 @@ struct IpsviFrameCounts {
 // asks for, or with 0 the largest whose texels are about a pixel wide at the
 // visible part of the volume (for a light inside the box: at the box's
 // half-diagonal from the light), 16 to three times the image's longer side,
-// and (frustum and orthographic maps) at most 1.4 texels per image pixel in
-// all: coarser texels where the visible region needs more. With several
-// lights the others take the largest light's side, so their trimmed grids
-// may hold more than that.
+// and at most 1.4 texels per image pixel in all: coarser texels where the
+// visible region needs more. For a light inside the box an octahedral map,
+// fitted to the directions toward the visible region, or of all directions
+// (at most 4 texels per image pixel) where the light lies in that region.
+// With several lights the others take the largest light's side, so their
+// trimmed grids may hold more than that.
 // Throws InvalidArgument naming cache_size for a size outside [16, 4096].
 std::vector<LightCacheProjection> fit_ipsvi_caches(const Scene& scene, const IpsviSettings& settings);
 // The size of those caches (16 without lights).
