@@ -46,6 +46,8 @@ struct LightCacheProjection {
   vec2 lower{0.0f};  // perspective: the tan coordinates of texel corner (0, 0); octahedral: its map coordinates
   float max_depth = 1.0f;        // the largest depth of a point of the box
 
+  friend bool operator==(const LightCacheProjection&, const LightCacheProjection&) = default;
+
   // (u, v) in texel units and the depth. Points the buffer does not cover get
   // u = v = -1 (outside every texel). Written over a lane type (base/lanes.h);
   // the octahedral map runs lane by lane.

@@ -19,12 +19,6 @@ namespace {
 // lights agree on (fit_ipsvi_caches).
 int texels_per_side(const LightCacheProjection& p) { return std::max(p.size, p.rows); }
 
-bool same_projection(const LightCacheProjection& a, const LightCacheProjection& b) {
-  return a.mapping == b.mapping && a.size == b.size && a.rows == b.rows && a.origin == b.origin && a.axis == b.axis &&
-         a.side_u == b.side_u && a.side_v == b.side_v && a.scale == b.scale && a.lower == b.lower &&
-         a.max_depth == b.max_depth;
-}
-
 // How far (in texel widths) the cache's light trails the samples that wrote
 // it (advance() in render()); measured in docs/ipsvi.md.
 constexpr float kCacheTrailTexels = 4.0f;
@@ -125,7 +119,7 @@ void IpsviRenderer::prepare(const Scene& scene, const IpsviSettings& settings) {
   const bool stale = !built_ || v.lights != lights_version_ || v.geometry != geometry_version_ ||
                      v.data != data_version_ || settings.cache_size != settings_.cache_size || channels_changed;
   bool refit = stale || fits.size() != lights_.size();
-  for (std::size_t i = 0; !refit && i < fits.size(); ++i) refit = !same_projection(fits[i], lights_[i].projection);
+  for (std::size_t i = 0; !refit && i < fits.size(); ++i) refit = fits[i] != lights_[i].projection;
   settings_ = settings;
   if (!refit) return;
   // A new fit (the camera moved, or anything the cache depends on changed):
