@@ -176,15 +176,16 @@ LightCacheProjection fit_light_cache_projection(const Light& light, const Box3& 
     const Rect& need = fit.rect;
     const vec2 extent = need.hi - need.lo;
     const float longest = glm::max(extent.x, extent.y);
+    // Automatic: texels a pixel wide where the light sees the volume, at up to
+    // its half-diagonal however close it is to the centre (measuring at the
+    // centre distance, 0 for a light at the centre, gave a 16^2 cache and
+    // radial light leaks); this many across the whole map.
+    const float reach = glm::max(0.5f * diagonal, glm::length(box.center() - light.position));
+    const float pixel_rule = glm::min(reach * 3.5449077f / glm::max(region.pixel, 1e-6f), 1e7f);
     if (fit.whole()) {  // the whole map, n x n, in the world's frame
       p.size = size;
       if (size == 0) {
-        // The light sees the volume at up to its half-diagonal, however close
-        // it is to the centre (measuring at the centre distance, 0 for a light
-        // at the centre, gave a 16^2 cache and radial light leaks).
-        const float reach = glm::max(0.5f * diagonal, glm::length(box.center() - light.position));
-        const float pixel = glm::max(region.pixel, 1e-6f);
-        p.size = glm::clamp(int(std::ceil(reach * 3.5449077f / pixel)), 16, cap);
+        p.size = glm::clamp(int(std::ceil(pixel_rule)), 16, cap);
         if (region.max_map_texels > 0.0 && double(p.size) * double(p.size) > region.max_map_texels) {
           p.size = glm::max(16, int(std::floor(std::sqrt(region.max_map_texels))));
         }
@@ -201,9 +202,7 @@ LightCacheProjection fit_light_cache_projection(const Light& light, const Box3& 
     p.side_v = fit.v;
     float across = float(size) / longest;  // texels across the whole map
     if (size == 0) {
-      const float reach = glm::max(0.5f * diagonal, glm::length(box.center() - light.position));
-      const float pixel = glm::max(region.pixel, 1e-6f);
-      across = glm::clamp(glm::ceil(glm::min(reach * 3.5449077f / pixel, 1e7f)), 16.0f / longest, float(cap) / longest);
+      across = glm::clamp(glm::ceil(pixel_rule), 16.0f / longest, float(cap) / longest);
       const double texels = double(across) * double(across) * double(extent.x) * double(extent.y);
       const double budget = region.max_map_texels;
       if (budget > 0.0 && texels > budget) {
