@@ -151,7 +151,7 @@ struct LightCacheRegion {
   float max_aspect = 4.0f;         // at most this much longer
   float pixel = 0.0f;              // world size of a pixel at the centroid (sizes the cache when size is 0)
   double max_texels = 0.0;         // automatic size: at most this many texels (0: no bound but max_size)
-  double max_map_texels = 0.0;     // the same for an octahedral map of all directions
+  double max_map_texels = 0.0;     // the same for an octahedral map (all directions or a part)
 };
 
 // The projection of `light` fitted to `region`'s light-space bounding
@@ -165,7 +165,8 @@ struct LightCacheRegion {
 // or with `trim` the rectangle of the map that holds the directions toward
 // the region (the whole map where the light lies in the visible part of the
 // box, or the directions straddle one of the map's folded edges), with square
-// texels, `size` along its longer side. The mapping, the axis and the depths
+// texels, `size` along its longer side; automatic, within
+// region.max_map_texels. The mapping, the axis and the depths
 // depend only on the light and the box.
 LightCacheProjection fit_light_cache_projection(const Light& light, const Box3& box, const LightCacheRegion& region,
                                                 int size, int max_size, bool trim = false);

@@ -44,12 +44,14 @@ SegmentTape& thread_tape(int limit) {
 }  // namespace
 
 constexpr double kCacheTexelsPerPixel = 1.4;
-// An octahedral map of all directions (a point light in the part of the box
-// the camera sees) covers the whole sphere around the light, toward parts
-// of the region at every distance: at most 4 texels per image pixel (twice
-// the side of a square image), which leaves the engine CT's map at fov 32
-// as it was (docs/ipsvi.md, "A light inside the box"). A map fitted to part
-// of the sphere keeps kCacheTexelsPerPixel.
+// An octahedral map (a point light inside the box) covers the whole sphere
+// around the light where the light lies in the part of the box the camera
+// sees, toward parts of the region at every distance: at most 4 texels per
+// image pixel (twice the side of a square image), which leaves the engine
+// CT's map at fov 32 and 128^2 as it was (docs/ipsvi.md, "A light inside the
+// box"; 1.4, the frustum maps' budget, doubled the error there). A map fitted
+// to part of the sphere (the light out of view) takes the same budget, so its
+// texels are finer than the whole map's.
 constexpr double kMapTexelsPerPixel = 4.0;
 
 std::vector<LightCacheProjection> fit_ipsvi_caches(const Scene& scene, const IpsviSettings& settings) {
@@ -71,8 +73,8 @@ std::vector<LightCacheProjection> fit_ipsvi_caches(const Scene& scene, const Ips
   // 8.6 MB; 4x and 3x long 0.56 / 4.2 in 15 MB; the whole box at a texel per
   // pixel 0.48 / 2.5 in 175 MB.)
   const int cap = std::clamp(3 * std::max(render.width, render.height), 16, 2048);
-  // And at most 1.4 texels per image pixel in all (a frustum, orthographic
-  // or fitted octahedral map): zoomed in, the visible region's light-space
+  // And at most 1.4 texels per image pixel in all (a frustum or orthographic
+  // map; octahedral maps: kMapTexelsPerPixel): zoomed in, the visible region's light-space
   // footprint holds many times the image's pixels (the frustum runs deep
   // into the box; engine CT, 128^2: 1.0x at fov 32, 3.3x at fov 16, 4.9x at
   // fov 3), so the texels grow past the pixel instead of the memory

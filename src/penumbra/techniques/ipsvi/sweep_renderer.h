@@ -62,7 +62,8 @@ struct IpsviFrameCounts {
 // and at most 1.4 texels per image pixel in all: coarser texels where the
 // visible region needs more. For a light inside the box an octahedral map,
 // fitted to the directions toward the visible region, or of all directions
-// (at most 4 texels per image pixel) where the light lies in that region.
+// where the light lies in that region, either at most 4 texels per image
+// pixel.
 // With several lights the others take the largest light's side, so their
 // trimmed grids may hold more than that.
 // Throws InvalidArgument naming cache_size for a size outside [16, 4096].
