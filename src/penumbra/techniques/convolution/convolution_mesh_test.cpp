@@ -97,34 +97,6 @@ TEST(PathtraceMeshes, ShadowOnTheFloorFollowsBeerLambert) {
   EXPECT_LT(f.worst_outside, 1e-4f);
 }
 
-// A dense homogeneous box (sigma 4.6 per unit: alpha 0.99 per unit), seen
-// obliquely by an orthographic camera and lit from behind the viewer, once as
-// the volume (an empty 32^3 frame whose TF is the medium everywhere: its box
-// is [-15.5, 15.5]^3) and once as a mesh box of the same extent in a
-// transparent frame. The volume path has the within-slab correction (and
-// agrees with the path tracer: 0.405 vs 0.40, issue 23); the mesh path must
-// light its samples the same way, so the two images agree at every slab
-// distance and the mesh's faces show no slab stripes.
-TEST(ConvolutionMeshes, DenseMeshBoxIsLitLikeTheSameVolume) {
-  const Scene volume_scene = dense_box_scene(false), mesh_scene_ = dense_box_scene(true);
-  float means[2];
-  int i = 0;
-  for (double slab : {0.5, 2.0}) {
-    const ParameterSettings params{{"slab_distance", slab}};
-    const Image volume = render_with(volume_scene, "convolution", params);
-    const Image mesh = render_with(mesh_scene_, "convolution", params);
-    testing::save_test_image(mesh, slab < 1.0 ? "conv_dense_box_mesh_e05.png" : "conv_dense_box_mesh_e2.png");
-    testing::save_test_image(volume, slab < 1.0 ? "conv_dense_box_volume_e05.png" : "conv_dense_box_volume_e2.png");
-    const BoxComparison c = compare_box(mesh, volume);
-    std::printf("dense box, slab distance %.1f: mesh %.4f, volume %.4f, rms difference %.4f\n", slab, c.mean_mesh,
-                c.mean_volume, c.rms_difference);
-    EXPECT_NEAR(c.mean_mesh, c.mean_volume, 0.02f) << "slab distance " << slab;
-    EXPECT_LT(c.rms_difference, 0.03f) << "slab distance " << slab;
-    means[i++] = c.mean_mesh;
-  }
-  EXPECT_NEAR(means[0], means[1], 0.02f);
-}
-
 // The guard band (issue 23): dense spheres at and beyond the image's left
 // border (x = -32 of a 64-unit, 64-pixel view) under a light travelling +x at
 // 45 degrees shadow the floor 20 units below inside the view. A sphere
@@ -253,11 +225,23 @@ TEST(ConvolutionMeshes, RebuildsOnlyForCameraOrMeshChanges) {
 namespace penumbra {
 namespace {
 
-// The mesh box against its path-traced reference (issue 23, item 4: the path
-// tracer draws meshes, mesh_media.h): single scattering, 256 paths per pixel
-// (standard error of the interior mean about 0.001). The path tracer's mesh
-// box also matches its volume box, the same medium tracked through the
+// A dense homogeneous box (sigma 4.6 per unit: alpha 0.99 per unit), seen
+// obliquely by an orthographic camera and lit from behind the viewer, once as
+// the volume (an empty 32^3 frame whose TF is the medium everywhere: its box
+// is [-15.5, 15.5]^3) and once as a mesh box of the same extent in a
+// transparent frame, against its path-traced reference (issue 23, item 4: the
+// path tracer draws meshes, mesh_media.h): single scattering, 256 paths per
+// pixel (standard error of the interior mean about 0.001). The path tracer's
+// mesh box also matches its volume box, the same medium tracked through the
 // volume's majorant grid, within that error.
+// convolution lights both within each slab (issue 23: a mesh lit by the light
+// entering its slab came out too bright and striped). The mesh's light
+// crosses its faces along slanted paths (slanted_paths.h), the volume's down
+// each pixel's column: measured 0.4202 / 0.4124 for the mesh at slab distance
+// 0.5 / 2 and 0.4108 / 0.3998 for the volume, against 0.4223 (the mesh with
+// the column model: the volume's values). So the mesh is the closer at both
+// distances and its brightness hardly depends on the distance (no slab
+// stripes on its faces).
 TEST(ConvolutionMeshes, DenseMeshBoxMatchesThePathTracedMesh) {
   const Scene volume_scene = dense_box_scene(false), mesh_scene_ = dense_box_scene(true);
   const ParameterSettings paths{{"spp", 256.0}, {"mode", std::string("single")}, {"progress", false}};
@@ -267,14 +251,23 @@ TEST(ConvolutionMeshes, DenseMeshBoxMatchesThePathTracedMesh) {
   const BoxComparison pt = compare_box(traced_mesh, traced_volume);
   std::printf("path-traced dense box: mesh %.4f, volume %.4f\n", pt.mean_mesh, pt.mean_volume);
   EXPECT_NEAR(pt.mean_mesh, pt.mean_volume, 0.005f);
+  float means[2];
+  int i = 0;
   for (double slab : {0.5, 2.0}) {
-    const Image mesh = render_with(mesh_scene_, "convolution", {{"slab_distance", slab}});
-    const BoxComparison c = compare_box(mesh, traced_mesh);
-    std::printf("dense box, slab distance %.1f: convolution mesh %.4f, path-traced mesh %.4f, rms %.4f\n", slab,
-                c.mean_mesh, c.mean_volume, c.rms_difference);
-    // Measured: 0.4107 / 0.3998 against 0.4223 (the slab model's own error).
-    EXPECT_NEAR(c.mean_mesh, c.mean_volume, 0.035f) << "slab distance " << slab;
+    const ParameterSettings params{{"slab_distance", slab}};
+    const Image mesh = render_with(mesh_scene_, "convolution", params);
+    const Image volume = render_with(volume_scene, "convolution", params);
+    testing::save_test_image(mesh, slab < 1.0 ? "conv_dense_box_mesh_e05.png" : "conv_dense_box_mesh_e2.png");
+    testing::save_test_image(volume, slab < 1.0 ? "conv_dense_box_volume_e05.png" : "conv_dense_box_volume_e2.png");
+    const BoxComparison c = compare_box(mesh, traced_mesh), v = compare_box(volume, traced_mesh);
+    std::printf("dense box, slab distance %.1f: convolution mesh %.4f, volume %.4f, path-traced mesh %.4f, rms %.4f\n",
+                slab, c.mean_mesh, v.mean_mesh, c.mean_volume, c.rms_difference);
+    EXPECT_NEAR(c.mean_mesh, c.mean_volume, 0.015f) << "slab distance " << slab;
+    EXPECT_NEAR(v.mean_mesh, v.mean_volume, 0.035f) << "slab distance " << slab;
+    EXPECT_LT(std::abs(c.mean_mesh - c.mean_volume), std::abs(v.mean_mesh - v.mean_volume)) << "slab distance " << slab;
+    means[i++] = c.mean_mesh;
   }
+  EXPECT_NEAR(means[0], means[1], 0.012f);
 }
 
 // The dense mesh sphere of issue 23 (sigma 4.6 per unit, radius 12, lit from

@@ -78,6 +78,14 @@ inline vec3 segment_light_factor(float a, vec3 b) {
 
 }  // namespace
 
+bool SlabRenderer::volume_has_extinction(const RenderView& view, const RenderView& shadow) const {
+  const std::size_t cells = resources_.majorants().majorant.size();
+  const auto any_extinction = [cells](const float* m) {
+    return m && std::any_of(m, m + cells, [](float x) { return x > 0.0f; });
+  };
+  return any_extinction(view.majorants) || any_extinction(shadow.majorants);
+}
+
 // The slab distance when none is set (Patel et al. 2013, section 7): the
 // render step where the volume has any extinction (for the viewer or, with
 // a shadow TF, for the light), and no more than the
@@ -85,12 +93,7 @@ inline vec3 segment_light_factor(float a, vec3 b) {
 // whose volume is empty takes the detail's distance alone; with neither,
 // the render step. At most kAutomaticSlabs slabs through the scene's depth.
 float SlabRenderer::automatic_slab_distance(const RenderView& view, const RenderView& shadow, float depth) const {
-  const std::size_t cells = resources_.majorants().majorant.size();
-  const auto any_extinction = [cells](const float* m) {
-    return m && std::any_of(m, m + cells, [](float x) { return x > 0.0f; });
-  };
-  const bool volume_matters = any_extinction(view.majorants) || any_extinction(shadow.majorants);
-  float e = volume_matters ? view.step : kInfinity;
+  float e = volume_has_extinction(view, shadow) ? view.step : kInfinity;
   e = glm::min(e, meshes_.detail_slab_distance());
   if (!(e < kInfinity)) e = view.step;
   return glm::max(e, depth / float(kAutomaticSlabs));
@@ -390,6 +393,24 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
   };
   last_tail_slabs_ = glm::max(slabs - 1 - tail_from, 0);
 
+  // Light paths cross a slab slanted (slanted_paths.h): the pixel loop
+  // leaves the buffers as they are, and after it every pixel's light is
+  // attenuated along its path, slanted where it meets a mesh or the box.
+  const bool slanted = light_count > 0 && has_meshes;
+  std::vector<vec2> light_means;
+  for (const GaussianLight& g : lights) light_means.push_back(e * g.mu);
+  if (slanted) {
+    // The volume's box counts where the volume has any extinction.
+    std::vector<vec2> box_runs(pixels, vec2(1.0f, 0.0f));
+    const bool volume = volume_has_extinction(view, shadow);
+    for (std::size_t i = 0; i < pixels && volume; ++i) {
+      const PixelState& p = px[i];
+      if (p.z_in <= p.z_out) box_runs[i] = vec2(p.z_in, glm::min(p.z_out, p.z_plane));
+    }
+    slanted_.start(has_meshes ? &meshes.ldi : nullptr, ldi_shift, box_runs, width, height);
+  }
+  std::vector<float*> planes(std::size_t(light_count) * std::size_t(channels));
+
   with_sampler(view.volume, [&](const auto& sampler) {
     using Sampler = std::decay_t<decltype(sampler)>;
     auto tf_lookup = [&](const TransferFunctionView& tf, float value) {
@@ -405,6 +426,7 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
       }
       const int next = 1 - current;
       if (any_carried && k > 0) medium.build();
+      if (slanted) slanted_.enter_slab(frame, z, light_means);
       for (int l = 0; l < light_count; ++l) {
         if (k == 0) continue;  // buffers start unoccluded
         const SlabKernel kernel = kernels[std::size_t(l)].for_slab(k);
@@ -428,6 +450,7 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
             const std::size_t i = std::size_t(x) + std::size_t(width) * std::size_t(y);
             PixelState& p = px[i];
             if (has_medium) has_medium[i] = 0;
+            if (slanted) slanted_.clear(i, !p.done);
             if (p.done) continue;  // behind an opaque plane: nothing of this pixel is left to see or to shadow
             const bool plane_here = p.plane >= 0 && p.z_plane < z1;
             const bool shading = !p.guard && p.transmittance > min_transmittance;
@@ -441,6 +464,7 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
             const float s0 = glm::max(z0, p.z_in), s1 = glm::min(z1, p.z_out);
             const float zs = s0 + p.offset * (s1 - s0);
             bool volume_here = s1 > s0 && !(p.plane >= 0 && p.z_plane <= zs);
+            const bool crosses_box = volume_here;
             vec4 volume_sample(0.0f);  // (rgb, alpha) along the viewing ray
             float volume_shadow = 0.0f;  // optical depth toward the lights per unit light path
             float value = 0.0f;
@@ -523,14 +547,26 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
               // light entering the slab unattenuated, as in the paper, a dense
               // mesh came out too bright and striped with a brightness that
               // grew with the slab distance (issue 23).
+              // With slanted paths each part's light is read where the light's
+              // ray through the part's middle (depth `middle`) crossed the
+              // slab's plane, not at the pixel.
               auto composite = [&](vec4 sample, const vec3* half_depth, vec3 pos, vec3 index, float v,
-                                   const ScatteringLighting<BufferVisibility>& lighting) {
+                                   const ScatteringLighting<BufferVisibility>& lighting, float middle) {
                 if (!(sample.a > 0.0f)) return;
                 const float view_depth = -std::log1p(-glm::min(sample.a, 1.0f - 1e-7f));
+                const float along = (middle - z) / e;
                 for (std::size_t s = 0; s < slot_of.size(); ++s) {
-                  if (slot_of[s] < 0) continue;
-                  vis[s] = half_depth ? incoming[s] * segment_light_factor(view_depth, 2.0f * half_depth[slot_of[s]])
-                                      : incoming[s];
+                  const int l = slot_of[s];
+                  if (l < 0) continue;
+                  vec3 in = incoming[s];
+                  if (slanted && along != 0.0f) {
+                    const vec2 at = vec2(float(x) + 0.5f, float(y) + 0.5f) - along * slanted_.drift(l, x, int(y));
+                    in = channels == 1 ? vec3(read_buffer(buffer(l, current), width, height, at))
+                                       : vec3(read_buffer(buffer(l, current, 0), width, height, at),
+                                              read_buffer(buffer(l, current, 1), width, height, at),
+                                              read_buffer(buffer(l, current, 2), width, height, at));
+                  }
+                  vis[s] = half_depth ? in * segment_light_factor(view_depth, 2.0f * half_depth[l]) : in;
                 }
                 ScatteringLighting<BufferVisibility> lit = lighting;
                 lit.visibility.values = vis;
@@ -549,25 +585,38 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
                     const vec3 qi = view.volume.index_from_world(q);
                     if (shadow.majorant_at(qi) > 0.0f) sigma = tf_lookup(shadow.tf, sampler(qi)).a;
                   }
-                  volume_half[l] = vec3(sigma * half_path);
+                  // With slanted paths: the box's depth along the light's path
+                  // from the slab's front to the part's back.
+                  const float inside = slanted ? slanted_.inside_box(l, x, int(y), s1, s1) : s1 - s0;
+                  volume_half[l] = vec3(sigma * half_path * (inside / (s1 - s0)));
                 }
               }
               vec3 mesh_half[kMaxLights];
               if (mesh_sample.a > 0.0f) {
-                for (int l = 0; l < light_count; ++l) mesh_half[l] = 0.5f * mesh_shadow * light_path[std::size_t(l)];
+                const vec3 sigma = mesh_shadow * (e / cover.length);
+                for (int l = 0; l < light_count; ++l) {
+                  // The light crosses the mesh's depth inside along its path from
+                  // the slab's front to the covered part's back (the column's
+                  // covered length where the path runs straight down it).
+                  const float inside = slanted_.inside_mesh(l, x, int(y), cover.last, cover.last);
+                  mesh_half[l] = 0.5f * sigma * (inside / e) * light_path[std::size_t(l)];
+                }
               }
               if (cover.middle < 0.5f * (s0 + s1)) {  // the parts' middles order them, wherever they sample
-                composite(mesh_sample, mesh_half, mesh_pos, vec3(0.0f), 0.0f, mesh_light);
-                composite(volume_sample, volume_half, volume_pos, volume_index, value, volume_light);
+                composite(mesh_sample, mesh_half, mesh_pos, vec3(0.0f), 0.0f, mesh_light, cover.middle);
+                composite(volume_sample, volume_half, volume_pos, volume_index, value, volume_light, 0.5f * (s0 + s1));
               } else {
-                composite(volume_sample, volume_half, volume_pos, volume_index, value, volume_light);
-                composite(mesh_sample, mesh_half, mesh_pos, vec3(0.0f), 0.0f, mesh_light);
+                composite(volume_sample, volume_half, volume_pos, volume_index, value, volume_light, 0.5f * (s0 + s1));
+                composite(mesh_sample, mesh_half, mesh_pos, vec3(0.0f), 0.0f, mesh_light, cover.middle);
               }
             }
             // (4) the light leaving this slab toward the next.
             const vec3 optical_depth = volume_shadow + mesh_shadow;
             if (has_medium) has_medium[i] = max_component(optical_depth) > 0.0f;
-            if (max_component(optical_depth) > 0.0f) {
+            if (slanted) {  // attenuated after the loop, along the paths
+              if (cover.length > 0.0f) slanted_.record_mesh(i, mesh_shadow * (e / cover.length));
+              if (crosses_box) slanted_.record_volume(i, volume_shadow / ((s1 - s0) / e));
+            } else if (max_component(optical_depth) > 0.0f) {
               for (int l = 0; l < light_count; ++l) {
                 for (int c = 0; c < channels; ++c) {
                   buffer(l, current, c)[i] *= exp_nonpositive(-optical_depth[c] * light_path[std::size_t(l)]);
@@ -577,7 +626,13 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
             if (plane_here) {
               // Lit by the light that crossed this slab's medium in front of it.
               for (std::size_t s = 0; s < slot_of.size(); ++s) {
-                if (slot_of[s] >= 0) vis[s] = light_at(slot_of[s], current, i);
+                const int l = slot_of[s];
+                if (l < 0) continue;
+                vis[s] = light_at(l, current, i);
+                if (slanted) {  // down its column: the plane cuts the slab's paths
+                  const vec3 depth = optical_depth * light_path[std::size_t(l)];
+                  vis[s] *= vec3(exp_nonpositive(-depth.x), exp_nonpositive(-depth.y), exp_nonpositive(-depth.z));
+                }
               }
               shade_plane(p, x, int(y), vis);
             }
@@ -585,6 +640,12 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
         }
         samples.fetch_add(count, std::memory_order_relaxed);
       });
+      if (slanted) {
+        for (int l = 0; l < light_count; ++l) {
+          for (int c = 0; c < channels; ++c) planes[std::size_t(l * channels + c)] = buffer(l, current, c);
+        }
+        slanted_.attenuate(planes.data(), light_count, channels, light_path, has_medium);
+      }
     }
     return 0;
   });

@@ -34,7 +34,10 @@
 // (render/microfacet.h). Both media attenuate the light buffers: grey, or
 // per colour channel (three buffers per light) when a mesh's material has a
 // transport colour (its light extinction sigma_t (1 - transport_color);
-// Patel et al. 2013, Fig. 7e).
+// Patel et al. 2013, Fig. 7e). With a mesh in the scene the light crosses
+// the meshes' and the box's surfaces along slanted paths, not down each
+// pixel's column (slanted_paths.h: the slab rings of issue 23); the buffers
+// are attenuated after each slab's pixel loop.
 // Preintegrated compositing (optional): the volume segment between the
 // previous slab's sample and this one takes its opacity and colour from the
 // preintegration table of the TF (preintegration.h) instead of one point.
@@ -46,6 +49,7 @@
 #include "penumbra/techniques/convolution/gaussian_light.h"
 #include "penumbra/techniques/convolution/mesh_resources.h"
 #include "penumbra/techniques/convolution/preintegration.h"
+#include "penumbra/techniques/convolution/slanted_paths.h"
 #include "penumbra/techniques/convolution/slab_kernel.h"
 
 #include <cstdint>
@@ -81,11 +85,14 @@ class SlabRenderer {
 
  private:
   float automatic_slab_distance(const RenderView& view, const RenderView& shadow, float depth) const;
+  // Whether the volume has any extinction, for the viewer or through a shadow TF.
+  bool volume_has_extinction(const RenderView& view, const RenderView& shadow) const;
   SceneResources resources_;
   MeshResources meshes_;
   PreintegrationCache preintegration_;
   SlabSettings settings_;
   CarriedLights carried_;  // zero-variance lights' grids (carried_light.h)
+  SlantedPaths slanted_;  // light paths across slabs where they meet a surface (slanted_paths.h)
   std::vector<float> buffers_;  // 2 per light, ping-pong: the light's transmittance, grey or per channel (DESIGN-NOTES)
   int last_slabs_ = 0;
   int last_tail_slabs_ = 0;
