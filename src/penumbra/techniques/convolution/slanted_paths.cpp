@@ -27,13 +27,7 @@ void SurfaceRuns::from_ldi(const LdiView& ldi, int width, int height, int shift)
       offsets_[std::size_t(x) + std::size_t(width) * std::size_t(y) + 1] = std::uint32_t(runs_.size());
     }
   }
-  cursor_.assign(offsets_.begin(), offsets_.end() - 1);
-  current_.assign(pixels, vec2(1.0f, 0.0f));
-  gradients_.assign(pixels, vec4(0.0f));
-  with_runs_.clear();
-  for (std::size_t i = 0; i < pixels; ++i) {
-    if (offsets_[i + 1] > offsets_[i]) with_runs_.push_back(std::uint32_t(i));
-  }
+  start_cursors();
 }
 
 void SurfaceRuns::from_intervals(const std::vector<vec2>& runs, int width, int height) {
@@ -46,6 +40,12 @@ void SurfaceRuns::from_intervals(const std::vector<vec2>& runs, int width, int h
     if (runs[i].x <= runs[i].y) runs_.push_back(runs[i]);
     offsets_[i + 1] = std::uint32_t(runs_.size());
   }
+  start_cursors();
+}
+
+// Once the runs are in: every pixel before its first run, none current.
+void SurfaceRuns::start_cursors() {
+  const std::size_t pixels = offsets_.size() - 1;
   cursor_.assign(offsets_.begin(), offsets_.end() - 1);
   current_.assign(pixels, vec2(1.0f, 0.0f));
   gradients_.assign(pixels, vec4(0.0f));

@@ -90,6 +90,7 @@ class SurfaceRuns {
   }
 
  private:
+  void start_cursors();
   int width_ = 0, height_ = 0;
   std::vector<std::uint32_t> offsets_;  // per pixel, its runs in runs_ (CSR)
   std::vector<vec2> runs_;
