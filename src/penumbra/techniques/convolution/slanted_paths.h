@@ -23,12 +23,14 @@
 //   - the light leaving a slab is attenuated along each pixel's path through
 //     the slab (attenuate), at the extinction the pixel's column sampled or,
 //     where only the path meets the medium, its neighbours';
-//   - a sample's light takes the depth inside along the light's path up to
-//     the front and the back of its part of the slab (inside);
+//   - a sample's light crosses the depth inside along the light's path from
+//     the slab's front to the back of its part of the slab (inside);
 //   - and is read where the ray through the part's middle crossed the slab's
 //     plane (drift), not at the pixel.
-// Inside a volume (an iso-surface of the data) the column model stays: only
-// the surfaces above are known.
+// Only scenes with a mesh take this path (the box too, so that a volume and a
+// mesh of the same shape render alike); volume-only scenes keep the column
+// model, as does the inside of any volume (its iso-surfaces are not known).
+// docs/convolution.md, "Slanted light paths".
 #include "penumbra/base/math.h"
 #include "penumbra/techniques/convolution/layered_depth_image.h"
 #include "penumbra/techniques/convolution/light_propagation.h"
