@@ -198,11 +198,23 @@ TEST(ConvolutionMeshes, RebuildsOnlyForCameraOrMeshChanges) {
   auto technique = find_technique("convolution").create();
   const ParameterValues params(find_technique("convolution").parameters);
   Image image;
+  // Each frame of the kept renderer is also the image a fresh one gives:
+  // what it keeps between frames (the LDI, the slanted paths' runs of it)
+  // follows the camera and the meshes.
   auto frame = [&] {
     technique->prepare(scene, params);
     technique->render(scene, image);
+    auto fresh = find_technique("convolution").create();
+    fresh->prepare(scene, params);
+    Image expected;
+    fresh->render(scene, expected);
+    EXPECT_EQ(rmse(image, expected), 0.0);
     return technique->rebuilds();
   };
+  // A tilted light, so that the slanted paths read the runs.
+  Light tilted;
+  tilted.direction = glm::normalize(vec3(0.5f, 0.3f, -1.0f));
+  scene.set_lights({tilted});
   const std::uint64_t first = frame();
   EXPECT_EQ(first, 2u);  // the world mesh and the LDI
   EXPECT_EQ(frame(), first);

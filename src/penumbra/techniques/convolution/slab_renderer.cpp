@@ -407,7 +407,7 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
       const PixelState& p = px[i];
       if (p.z_in <= p.z_out) box_runs[i] = vec2(p.z_in, glm::min(p.z_out, p.z_plane));
     }
-    slanted_.start(has_meshes ? &meshes.ldi : nullptr, ldi_shift, box_runs, width, height);
+    slanted_.start(has_meshes ? &meshes.ldi : nullptr, ldi_shift, meshes_.builds(), box_runs, width, height);
   }
   std::vector<float*> planes(std::size_t(light_count) * std::size_t(channels));
 

@@ -5,9 +5,15 @@
 
 namespace penumbra {
 
-void SurfaceRuns::from_ldi(const LdiView& ldi, int width, int height, int shift) {
+void SurfaceRuns::from_ldi(const LdiView& ldi, int width, int height, int shift, int version) {
+  if (version == version_ && shift == shift_ && width == width_ && height == height_) {
+    start_cursors();
+    return;
+  }
   width_ = width;
   height_ = height;
+  shift_ = shift;
+  version_ = version;
   const std::size_t pixels = std::size_t(width) * std::size_t(height);
   offsets_.assign(pixels + 1, 0u);
   runs_.clear();
@@ -33,6 +39,7 @@ void SurfaceRuns::from_ldi(const LdiView& ldi, int width, int height, int shift)
 void SurfaceRuns::from_intervals(const std::vector<vec2>& runs, int width, int height) {
   width_ = width;
   height_ = height;
+  shift_ = version_ = -1;
   const std::size_t pixels = std::size_t(width) * std::size_t(height);
   offsets_.assign(pixels + 1, 0u);
   runs_.clear();
@@ -98,11 +105,12 @@ void SurfaceRuns::enter_slab(float z0, float e) {
   }, 256);
 }
 
-void SlantedPaths::start(const LdiView* ldi, int shift, const std::vector<vec2>& box, int width, int height) {
+void SlantedPaths::start(const LdiView* ldi, int shift, int ldi_version, const std::vector<vec2>& box, int width,
+                         int height) {
   width_ = width;
   height_ = height;
   meshes_on_ = ldi != nullptr;
-  if (meshes_on_) meshes_.from_ldi(*ldi, width, height, shift);
+  if (meshes_on_) meshes_.from_ldi(*ldi, width, height, shift, ldi_version);
   box_.from_intervals(box, width, height);
   const std::size_t pixels = std::size_t(width) * std::size_t(height);
   // The pixels with a run of either kind, in order.

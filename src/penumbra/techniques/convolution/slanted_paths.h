@@ -66,8 +66,10 @@ PENUMBRA_HD inline float slanted_inside_length(float z0, float span, float h, fl
 class SurfaceRuns {
  public:
   // From the layered depth image: depth inside any mesh (frame pixel (x, y)
-  // is LDI pixel (x + shift, y + shift)).
-  void from_ldi(const LdiView& ldi, int width, int height, int shift);
+  // is LDI pixel (x + shift, y + shift)). `version` names the image (its
+  // build count): the runs of an unchanged image are kept, only the cursors
+  // start again.
+  void from_ldi(const LdiView& ldi, int width, int height, int shift, int version);
   // One run per pixel; a run with h > g is none.
   void from_intervals(const std::vector<vec2>& runs, int width, int height);
   // Each pixel's run nearest the slab [z0, z0 + e] (overlapping it, else the
@@ -94,6 +96,7 @@ class SurfaceRuns {
  private:
   void start_cursors();
   int width_ = 0, height_ = 0;
+  int shift_ = -1, version_ = -1;  // the image the runs came from (from_ldi)
   std::vector<std::uint32_t> offsets_;  // per pixel, its runs in runs_ (CSR)
   std::vector<vec2> runs_;
   std::vector<std::uint32_t> cursor_;  // per pixel, its run nearest the slab (slabs come front to back)
@@ -106,10 +109,11 @@ class SurfaceRuns {
 // lights' sideways travel, and what each pixel's column crossed in the slab.
 class SlantedPaths {
  public:
-  // Once per frame. `ldi`: the meshes' layered depth image (null: none);
+  // Once per frame. `ldi`: the meshes' layered depth image (null: none),
+  // `ldi_version` its build count;
   // `box`: per pixel, the ray's depth interval inside the volume's box and
   // clip planes, up to its plane (empty where the volume has no extinction).
-  void start(const LdiView* ldi, int shift, const std::vector<vec2>& box, int width, int height);
+  void start(const LdiView* ldi, int shift, int ldi_version, const std::vector<vec2>& box, int width, int height);
   // Before the pixel loop of the slab whose middle plane lies at depth z
   // (`light_means`: e mu per light, world units, light_propagation.h).
   void enter_slab(const SlabFrame& frame, float z, const std::vector<vec2>& light_means);
