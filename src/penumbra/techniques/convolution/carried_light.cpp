@@ -69,10 +69,11 @@ ivec2 shift_carried_grid(CarriedGrid& grid, const float* from, float* to, int pl
   return n;
 }
 
-void MediumMask::resize(int frame_width, int frame_height) {
+void MediumMask::resize(int frame_width, int frame_height, int channels) {
   width_ = frame_width;
   height_ = frame_height;
   any_.assign(std::size_t(frame_width) * std::size_t(frame_height), 0);
+  depth_.assign(std::size_t(channels) * any_.size(), 0.0f);
   mask_.assign(std::size_t(frame_width + 1) * std::size_t(frame_height + 1), 0);
   any_set_ = false;
 }
@@ -128,12 +129,11 @@ float* CarriedLights::texels(int l, int half) {
          std::size_t(half) * std::size_t(channels_ + 1) * std::size_t(g.width) * std::size_t(g.height);
 }
 
-void CarriedLights::advance(int l, const float* out, const MediumMask& medium, const SlabMapping& mapping, vec2 w) {
+void CarriedLights::advance(int l, float path, const MediumMask& medium, const SlabMapping& mapping, vec2 w) {
   CarriedGrid& g = grids_[std::size_t(l)];
   int& half = half_[std::size_t(l)];
   float* t = texels(l, half);
   const std::size_t plane = std::size_t(g.width) * std::size_t(g.height);
-  const std::size_t frame_plane = std::size_t(frame_width_) * std::size_t(frame_height_);
   const float step = float(++steps_[std::size_t(l)]);
   if (medium.any()) parallel_for(0, g.height, [&](std::int64_t first, std::int64_t last) {
     for (std::int64_t y = first; y < last; ++y) {
@@ -142,8 +142,8 @@ void CarriedLights::advance(int l, const float* out, const MediumMask& medium, c
         if (!medium.touches(p)) continue;
         t[std::size_t(channels_) * plane + std::size_t(x) + std::size_t(g.width) * std::size_t(y)] = step;
         for (int c = 0; c < channels_; ++c) {
-          t[std::size_t(c) * plane + std::size_t(x) + std::size_t(g.width) * std::size_t(y)] =
-              read_buffer(out + std::size_t(c) * frame_plane, frame_width_, frame_height_, p);
+          t[std::size_t(c) * plane + std::size_t(x) + std::size_t(g.width) * std::size_t(y)] *=
+              read_transmittance(medium.depth(c), frame_width_, frame_height_, p, path);
         }
       }
     }

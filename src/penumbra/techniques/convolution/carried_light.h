@@ -16,21 +16,23 @@
 // attenuated by each pixel's own column, so a pixel's light has crossed the
 // medium it shows (a dense surface is lit by light that reached it, not by
 // light a neighbouring column darkened). Beside it, the carried grid holds
-// the same light without re-sampling where nothing attenuated it:
+// the same light without re-sampling:
 //   - a texel whose crossing of a slab touched the medium (any of the four
-//     pixels around it has optical depth there) takes the light leaving that
-//     slab from the pixel grid (one bilinear read); elsewhere it keeps its
-//     value as it moves;
+//     pixels around it has optical depth there) is attenuated by that slab's
+//     transmittance where it crossed it (the four pixels' transmittances,
+//     bilinear); elsewhere it keeps its value as it moves. Its light is never
+//     re-sampled, inside a medium either: taking the pixel grid's light there
+//     (one bilinear read of light re-sampled every slab) widened a hard
+//     shadow by the occluder's depth in slabs;
 //   - a pixel takes its light from the carried grid (one bilinear read)
 //     instead of the re-sampled value when its light crossed no medium in the
 //     last slab (the four pixels around where it came from have none) and
 //     the four texels it reads have not touched a medium for `min_age`
 //     slabs (about a pixel of the light's sideways travel).
-// So light re-samples every slab only while it crosses a medium and for
-// about a pixel beyond it; across empty space to a receiver farther away it
-// is read twice, leaving the occluder and arriving. Re-sampling every slab
-// left hard shadows 2.4-3.5 px wide where shadow-rays draws 0.9-1.5 px (the
-// blur grows with the slab count).
+// So a receiver's light, once it has crossed empty space, is read once, on
+// arriving, and its occluders' edges are each one bilinear read of a slab's
+// transmittance. Re-sampling every slab left hard shadows 2.4-3.5 px wide
+// where shadow-rays draws 0.9-1.5 px (the blur grows with the slab count).
 // The age condition keeps the pixel grid's light next to a medium: a texel
 // that took its light between a dense column and a clear one holds a mix of
 // both, and read by the clear pixel beside a dense surface it would darken
@@ -72,6 +74,21 @@ struct CarriedGrid {
   PENUMBRA_HD vec2 texel_of(vec2 p) const { return grid_center + (p - center - offset) / scale; }
 };
 
+// A slab's transmittance exp(-path depth) read bilinearly at frame position p
+// (pixel centres at +0.5, clamp-to-edge) from its optical depth per pixel:
+// the transmittances of the four pixels interpolated, as a read of the light
+// leaving the slab would be where the light entering it is the same.
+PENUMBRA_HD inline float read_transmittance(const float* depth, int width, int height, vec2 p, float path) {
+  const float fx = p.x - 0.5f, fy = p.y - 0.5f;
+  const float x0f = glm::floor(fx), y0f = glm::floor(fy);
+  const float tx = fx - x0f, ty = fy - y0f;
+  const int x0 = int(x0f), y0 = int(y0f);
+  const int xa = glm::clamp(x0, 0, width - 1), xb = glm::clamp(x0 + 1, 0, width - 1);
+  const int ra = width * glm::clamp(y0, 0, height - 1), rb = width * glm::clamp(y0 + 1, 0, height - 1);
+  const auto t = [&](int i) { return exp_nonpositive(-path * depth[i]); };
+  return (1.0f - ty) * ((1.0f - tx) * t(ra + xa) + tx * t(ra + xb)) + ty * ((1.0f - tx) * t(rb + xa) + tx * t(rb + xb));
+}
+
 // A grid over a frame of frame_width x frame_height pixels that keeps
 // covering it (with 2 texels of read support) down to scale `min_scale`.
 CarriedGrid carried_grid(int frame_width, int frame_height, float min_scale);
@@ -110,11 +127,15 @@ struct MediumMaskView {
 // Which frame positions have a medium among the four pixels a bilinear read
 // there takes (clamp-to-edge), for one slab: the slab loop flags the pixels
 // where the slab has optical depth, build() dilates the flags once per slab,
-// and a query is one lookup.
+// and a query is one lookup. Beside the flags, the slab's optical depth per
+// pixel (`channels` planes), which the slab loop writes where it flags a
+// pixel and leaves at 0 elsewhere.
 class MediumMask {
  public:
-  void resize(int frame_width, int frame_height);  // all clear
+  void resize(int frame_width, int frame_height, int channels = 1);  // all clear
   std::uint8_t* flags() { return any_.data(); }     // per pixel: 1 where the slab has a medium
+  float* depth(int c = 0) { return depth_.data() + std::size_t(c) * any_.size(); }
+  const float* depth(int c = 0) const { return depth_.data() + std::size_t(c) * any_.size(); }
   void build();
   // Whether the last build() found any flag set (else touches() is false everywhere).
   bool any() const { return any_set_; }
@@ -126,6 +147,7 @@ class MediumMask {
   int width_ = 0, height_ = 0;
   std::vector<std::uint8_t> any_;   // the flags
   std::vector<std::uint8_t> mask_;  // (width + 1) x (height + 1): entry (x0 + 1, y0 + 1) for pixels x0..x0+1, y0..y0+1
+  std::vector<float> depth_;
   bool any_set_ = false;
 };
 
@@ -233,12 +255,12 @@ class CarriedLights {
   bool carries(int l) const { return std::size_t(l) < carried_.size() && carried_[std::size_t(l)]; }
   const CarriedGrid& grid(int l) const { return grids_[std::size_t(l)]; }
 
-  // Slab k > 0, light l: `out` is the light leaving slab k - 1 on the pixel
-  // grid (`channels` planes of frame pixels) and `medium` that slab's mask.
-  // Texels whose crossing of slab k - 1
-  // touched the medium take their light from `out`; then the grid follows
-  // its rays into slab k (`mapping`, w: convolve_texel_mapped's).
-  void advance(int l, const float* out, const MediumMask& medium, const SlabMapping& mapping, vec2 w);
+  // Slab k > 0, light l: `medium` is slab k - 1's mask and optical depth
+  // (as many channels as the lights), `path` the light's path length through
+  // a slab over its thickness. Texels whose crossing of slab k - 1 touched
+  // the medium are attenuated by exp(-path depth), read bilinearly; then the
+  // grid follows its rays into slab k (`mapping`, w: convolve_texel_mapped's).
+  void advance(int l, float path, const MediumMask& medium, const SlabMapping& mapping, vec2 w);
   // Then the light entering slab k at every pixel, into `incoming`
   // (`channels` planes): the carried light where it crossed no medium in
   // slab k - 1 (and the texels read have been clear for `min_age` slabs),

@@ -188,11 +188,12 @@ TEST(CarriedLight, MediumMaskChecksTheFourPixelsAroundAPosition) {
 // medium in every slab nothing is taken from the grid.
 struct MiniLoop {
   float edge_half = 0.0f, width = 0.0f, analytic = 0.0f;
+  float drift = 0.0f;  // w.x, the light's sideways step per slab (pixels; the same every slab here)
   std::vector<float> light;
   std::uint64_t free_pixels = 0;
 };
 
-MiniLoop mini_loop(bool carry, float haze) {
+MiniLoop mini_loop(bool carry, float haze, int thick = 1, float block = 50.0f) {
   const SlabFrame f = perspective_frame(true);
   const std::size_t pixels = std::size_t(kW * kH);
   std::vector<float> a(pixels, 1.0f), b(pixels), depth(pixels, 0.0f);
@@ -211,21 +212,25 @@ MiniLoop mini_loop(bool carry, float haze) {
       if (carry) {
         MediumMask medium;
         medium.resize(kW, kH);
-        for (std::size_t i = 0; i < pixels; ++i) medium.flags()[i] = depth[i] > 0.0f;
+        for (std::size_t i = 0; i < pixels; ++i) {
+          medium.flags()[i] = depth[i] > 0.0f;
+          medium.depth()[i] = depth[i];
+        }
         medium.build();
-        carried.advance(0, a.data(), medium, m, w);
+        carried.advance(0, 1.0f, medium, m, w);
         out.free_pixels += carried.propagate(0, f, k, a.data(), b.data(), medium, m, w);
       } else {
         convolve_slab(f, k, a.data(), b.data(), z);
       }
       a.swap(b);
       out.analytic -= w.x;  // orthographic: s = 1
+      out.drift = w.x;
     }
     // The pixels' pass: this slab's optical depth, and the light leaving it.
     for (int y = 0; y < kH; ++y) {
       for (int x = 0; x < kW; ++x) {
         const std::size_t i = std::size_t(x + kW * y);
-        depth[i] = (s == 0 && float(x) + 0.5f < 21.0f) ? 50.0f : haze;
+        depth[i] = (s < thick && float(x) + 0.5f < 21.0f) ? block : haze;
         a[i] *= std::exp(-depth[i]);
       }
     }
@@ -253,6 +258,40 @@ TEST(CarriedLight, LightCrossesEmptySpaceOnTheGridAndMediaOnThePixels) {
   const MiniLoop hazy = mini_loop(true, 1e-3f), hazy_resampled = mini_loop(false, 1e-3f);
   EXPECT_EQ(hazy.free_pixels, 0u);
   EXPECT_EQ(hazy.light, hazy_resampled.light);
+}
+
+// Light that leaves a thick occluder (40 slabs of it, the light crossing its
+// side) keeps its own value on the grid, attenuated by each slab's
+// transmittance where it crossed, instead of taking the pixel grid's light,
+// which is re-sampled every slab inside: an opaque block's shadow edge stays
+// where the rays put it and as narrow as a thin plate's (1.58 px at 27.33
+// against 27.40; taking the pixel grid's light: 2.31 px at 26.93), and a hazy
+// block's shadow follows exact rays along the row (rms 0.0175; the pixel
+// grid's light: 0.0357).
+TEST(CarriedLight, LightLeavingAThickOccluderIsNotBlurredInIt) {
+  const MiniLoop opaque = mini_loop(true, 0.0f, 40, 50.0f);
+  std::printf("opaque block, 40 slabs: edge at %.3f, width %.3f px; analytic %.3f\n", opaque.edge_half, opaque.width,
+              opaque.analytic);
+  EXPECT_NEAR(opaque.edge_half, opaque.analytic, 0.15f);
+  EXPECT_LT(opaque.width, 1.8f);
+
+  const float block = 0.05f;
+  const int thick = 40;
+  const MiniLoop hazy = mini_loop(true, 0.0f, thick, block);
+  // Pixel centre X of the row was at X + (80 - j) w.x on slab j, in the block
+  // where that is left of x = 21.
+  double sum = 0.0;
+  for (int x = 0; x < kW; ++x) {
+    const float X = float(x) + 0.5f;
+    int inside = 0;
+    for (int j = 0; j < thick; ++j) inside += X + float(80 - j) * hazy.drift < 21.0f;
+    const float exact = std::exp(-block * float(inside));
+    const float got = hazy.light[std::size_t(x + kW * (kH / 2))];
+    sum += double(got - exact) * double(got - exact);
+  }
+  const double rms = std::sqrt(sum / kW);
+  std::printf("hazy block, 40 slabs: rms against exact rays along the row %.4f\n", rms);
+  EXPECT_LT(rms, 0.026);
 }
 
 }  // namespace

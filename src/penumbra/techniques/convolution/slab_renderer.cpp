@@ -281,10 +281,13 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
   }
   const int clear_slabs = drift * float(kMaxClearSlabs) > 1.0f ? int(std::ceil(1.0f / drift)) : kMaxClearSlabs;
   carried_.start(width, height, channels, min_scale, clear_slabs, carried);
-  // Where the last slab has a medium (what the carried grids test).
+  // Where the last slab has a medium and its optical depth there (what the
+  // carried grids test and are attenuated by).
   MediumMask medium;
-  if (any_carried) medium.resize(width, height);
+  if (any_carried) medium.resize(width, height, channels);
   std::uint8_t* const has_medium = any_carried ? medium.flags() : nullptr;
+  float* slab_depth[3] = {nullptr, nullptr, nullptr};
+  for (int c = 0; c < channels && any_carried; ++c) slab_depth[c] = medium.depth(c);
   const SlabFrame frame{cam, width, height, e};
   const float min_transmittance = 1.0f - view.ert_threshold;
   const bool separate_shadow_tf = scene.shadow_transfer_function().has_value();
@@ -370,7 +373,7 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
       maps[l] = slab_mapping(frame, z);
       const vec2 o = kernel.offset(0, 1.0f, 0.0f);
       offsets[l] = maps[l].pixels_per_unit * vec2(-o.x, o.y);
-      carried_.advance(l, buffer(l, current), medium, maps[l], offsets[l]);  // the mask is empty: the grid moves
+      carried_.advance(l, light_path[std::size_t(l)], medium, maps[l], offsets[l]);  // the mask is empty: the grid moves
     }
     current = next;  // a carried light's buffers are left stale: only the last slab reads them, where none is needed
     const std::size_t begin = tail_start[std::size_t(k - tail_from)], end = tail_start[std::size_t(k - tail_from) + 1];
@@ -434,7 +437,7 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
           const SlabMapping m = slab_mapping(frame, z);
           const vec2 o = kernel.offset(0, 1.0f, 0.0f);
           const vec2 w = m.pixels_per_unit * vec2(-o.x, o.y);
-          carried_.advance(l, buffer(l, current), medium, m, w);
+          carried_.advance(l, light_path[std::size_t(l)], medium, m, w);
           carried_.propagate(l, frame, kernel, buffer(l, current), buffer(l, next), medium, m, w);
           continue;
         }
@@ -449,7 +452,10 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
           for (int x = 0; x < width; ++x) {
             const std::size_t i = std::size_t(x) + std::size_t(width) * std::size_t(y);
             PixelState& p = px[i];
-            if (has_medium) has_medium[i] = 0;
+            if (has_medium) {
+              has_medium[i] = 0;
+              for (int c = 0; c < channels; ++c) slab_depth[c][i] = 0.0f;
+            }
             if (slanted) slanted_.clear(i, !p.done);
             if (p.done) continue;  // behind an opaque plane: nothing of this pixel is left to see or to shadow
             const bool plane_here = p.plane >= 0 && p.z_plane < z1;
@@ -612,7 +618,10 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
             }
             // (4) the light leaving this slab toward the next.
             const vec3 optical_depth = volume_shadow + mesh_shadow;
-            if (has_medium) has_medium[i] = max_component(optical_depth) > 0.0f;
+            if (has_medium) {
+              has_medium[i] = max_component(optical_depth) > 0.0f;
+              for (int c = 0; c < channels; ++c) slab_depth[c][i] = optical_depth[c];
+            }
             if (slanted) {  // attenuated after the loop, along the paths
               if (cover.length > 0.0f) slanted_.record_mesh(i, mesh_shadow * (e / cover.length));
               if (crosses_box) slanted_.record_volume(i, volume_shadow / ((s1 - s0) / e));
