@@ -135,6 +135,21 @@ void CarriedLights::advance(int l, float path, const MediumMask& medium, const S
   float* t = texels(l, half);
   const std::size_t plane = std::size_t(g.width) * std::size_t(g.height);
   const float step = float(++steps_[std::size_t(l)]);
+  const std::size_t frame_plane = std::size_t(frame_width_) * std::size_t(frame_height_);
+  if (medium.any()) {  // the slab's transmittance per pixel, for the texels' bilinear reads
+    transmittance_.resize(std::size_t(channels_) * frame_plane);
+    parallel_for(0, frame_height_, [&](std::int64_t first, std::int64_t last) {
+      for (int c = 0; c < channels_; ++c) {
+        const float* depth = medium.depth(c);
+        float* out = transmittance_.data() + std::size_t(c) * frame_plane;
+        const std::size_t begin = std::size_t(first) * std::size_t(frame_width_);
+        const std::size_t end = std::size_t(last) * std::size_t(frame_width_);
+        for (std::size_t i = begin; i < end; ++i) {
+          out[i] = depth[i] > 0.0f ? exp_nonpositive(-path * depth[i]) : 1.0f;
+        }
+      }
+    });
+  }
   if (medium.any()) parallel_for(0, g.height, [&](std::int64_t first, std::int64_t last) {
     for (std::int64_t y = first; y < last; ++y) {
       for (int x = 0; x < g.width; ++x) {
@@ -143,7 +158,7 @@ void CarriedLights::advance(int l, float path, const MediumMask& medium, const S
         t[std::size_t(channels_) * plane + std::size_t(x) + std::size_t(g.width) * std::size_t(y)] = step;
         for (int c = 0; c < channels_; ++c) {
           t[std::size_t(c) * plane + std::size_t(x) + std::size_t(g.width) * std::size_t(y)] *=
-              read_transmittance(medium.depth(c), frame_width_, frame_height_, p, path);
+              read_buffer(transmittance_.data() + std::size_t(c) * frame_plane, frame_width_, frame_height_, p);
         }
       }
     }

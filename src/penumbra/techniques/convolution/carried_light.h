@@ -74,21 +74,6 @@ struct CarriedGrid {
   PENUMBRA_HD vec2 texel_of(vec2 p) const { return grid_center + (p - center - offset) / scale; }
 };
 
-// A slab's transmittance exp(-path depth) read bilinearly at frame position p
-// (pixel centres at +0.5, clamp-to-edge) from its optical depth per pixel:
-// the transmittances of the four pixels interpolated, as a read of the light
-// leaving the slab would be where the light entering it is the same.
-PENUMBRA_HD inline float read_transmittance(const float* depth, int width, int height, vec2 p, float path) {
-  const float fx = p.x - 0.5f, fy = p.y - 0.5f;
-  const float x0f = glm::floor(fx), y0f = glm::floor(fy);
-  const float tx = fx - x0f, ty = fy - y0f;
-  const int x0 = int(x0f), y0 = int(y0f);
-  const int xa = glm::clamp(x0, 0, width - 1), xb = glm::clamp(x0 + 1, 0, width - 1);
-  const int ra = width * glm::clamp(y0, 0, height - 1), rb = width * glm::clamp(y0 + 1, 0, height - 1);
-  const auto t = [&](int i) { return exp_nonpositive(-path * depth[i]); };
-  return (1.0f - ty) * ((1.0f - tx) * t(ra + xa) + tx * t(ra + xb)) + ty * ((1.0f - tx) * t(rb + xa) + tx * t(rb + xb));
-}
-
 // A grid over a frame of frame_width x frame_height pixels that keeps
 // covering it (with 2 texels of read support) down to scale `min_scale`.
 CarriedGrid carried_grid(int frame_width, int frame_height, float min_scale);
@@ -296,6 +281,7 @@ class CarriedLights {
   std::vector<int> steps_;              // per light, advances so far
   std::vector<std::size_t> base_;       // per light, its pair's first float
   std::vector<float> texels_;
+  std::vector<float> transmittance_;  // the last slab's, per channel and frame pixel (advance's scratch)
 };
 
 }  // namespace penumbra

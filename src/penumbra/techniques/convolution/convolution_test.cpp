@@ -113,7 +113,7 @@ float rising_crossing(const std::vector<float>& row, float level) {
 // Catmull-Rom, light_propagation.h, and carries the light along its rays
 // across empty space, carried_light.h). So: the half-shadow edge on the floor
 // is where shadow-rays puts it (A.5; within 1 px), the edge is sharp (10-90%
-// width measured 1.93 px; 3.5 px re-sampled every slab, 7.4 px with bilinear
+// width measured 1.80 px; 3.5 px re-sampled every slab, 7.4 px with bilinear
 // reads, 0.84 px for shadow-rays: bound 2.5 px), and away from the edge
 // (umbra, lit floor: more than 8 px from it) the floor matches within 0.02.
 TEST(Convolution, ZeroVarianceMatchesShadowRays) {
@@ -141,9 +141,9 @@ TEST(Convolution, ZeroVarianceMatchesShadowRays) {
 
 // Hard shadows at every image size (issue 23): with light carried along its
 // rays across empty space (carried_light.h) the edge scene's 10-90 % floor
-// width is 1.80 / 1.87 / 1.75 px at 64^2 / 128^2 / 256^2; re-sampled every
+// width is 1.60 / 1.75 / 1.86 px at 64^2 / 128^2 / 256^2; re-sampled every
 // slab (carried_light=false) it was 3.32 / 3.47 / 2.96; shadow-rays 1.42 /
-// 0.84 / 0.84. The half-shadow line is within 0.45 / 0.24 / 0.23 px of
+// 0.84 / 0.84. The half-shadow line is within 0.17 / 0.21 / 0.19 px of
 // shadow-rays'.
 TEST(Convolution, HardShadowsStayNarrowAtEverySize) {
   for (int size : {64, 128, 256}) {
