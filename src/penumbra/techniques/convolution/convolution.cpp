@@ -43,7 +43,7 @@ TechniqueInfo convolution_info() {
       "convolution",
       "iterative convolution shadows on view-aligned slabs from distant Gaussian lights (Patel et al. 2013)",
       ParameterTable{{
-          ParameterSpec::real("slab_distance", 0.0, 0.0, 1000.0, "slab distance e in voxels (0 = the render step, or less where the meshes' detail needs it)"),
+          ParameterSpec::real("slab_distance", 0.0, 0.0, 1000.0, "slab distance e in voxels (0 = the render step, or less where the meshes' detail or an oblique light needs it)"),
           ParameterSpec::real("optimal_distance", 0.0, 0.0, 100000.0,
                               "optimal shadow distance d1 in voxels (0 = a quarter of the box depth)"),
           ParameterSpec::choice("kernel", "ellipse", {"gaussian", "poisson", "ellipse"},

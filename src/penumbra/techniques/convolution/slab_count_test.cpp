@@ -89,5 +89,28 @@ TEST(ConvolutionSlabCount, RenderStepBoundsItAndAnExplicitDistanceWins) {
   EXPECT_NEAR(slab_count(detail_sphere_scene(noise(1e5f), false)), SlabRenderer::kAutomaticSlabs, 1);
 }
 
+// A light at angle theta to the view drifts e tan(theta) sideways per slab:
+// the automatic distance keeps that within a voxel (1 here), taking at most
+// kMaxDriftRefinement times the slabs the step and the detail give.
+TEST(ConvolutionSlabCount, ObliqueLightsTakeThinnerSlabs) {
+  DetailFunction constant;
+  constant.type = DetailType::Constant;
+  const auto lit = [](Scene scene, float tan) {
+    scene.set_lights({testing::directional_light(glm::normalize(vec3(tan, 0.0f, -1.0f)))});
+    return scene;
+  };
+  const Scene stepped = detail_sphere_scene(constant, false);  // e = the step, 1
+  EXPECT_EQ(slab_count(lit(stepped, 0.0f)), expected_slabs(1.0f));
+  EXPECT_EQ(slab_count(lit(stepped, 0.9f)), expected_slabs(1.0f));  // drifts 0.9 a slab
+  EXPECT_NEAR(slab_count(lit(stepped, 2.0f)), expected_slabs(0.5f), 1);
+  EXPECT_NEAR(slab_count(lit(stepped, 3.0f)), expected_slabs(1.0f / 3.0f), 1);
+  EXPECT_NEAR(slab_count(lit(stepped, 10.0f)), expected_slabs(0.25f), 1);  // at most 4x the slabs
+  // Coarse detail (e = 12): a light at tan 0.5 drifts 6 a slab; 2 would keep it
+  // within a voxel, 3 is the most slabs allowed.
+  EXPECT_NEAR(slab_count(lit(detail_sphere_scene(noise(0.5f), false), 0.5f)), expected_slabs(3.0f), 1);
+  // An explicit distance is kept.
+  EXPECT_EQ(slab_count(lit(stepped, 3.0f), {{"slab_distance", 1.0}}), expected_slabs(1.0f));
+}
+
 }  // namespace
 }  // namespace penumbra

@@ -92,10 +92,24 @@ bool SlabRenderer::volume_has_extinction(const RenderView& view, const RenderVie
 // meshes' detail asks for (MeshResources::detail_slab_distance). A scene
 // whose volume is empty takes the detail's distance alone; with neither,
 // the render step. At most kAutomaticSlabs slabs through the scene's depth.
-float SlabRenderer::automatic_slab_distance(const RenderView& view, const RenderView& shadow, float depth) const {
+float SlabRenderer::automatic_slab_distance(const RenderView& view, const RenderView& shadow, float depth,
+                                            const std::vector<GaussianLight>& lights) const {
   float e = volume_has_extinction(view, shadow) ? view.step : kInfinity;
   e = glm::min(e, meshes_.detail_slab_distance());
   if (!(e < kInfinity)) e = view.step;
+  // A light's path crosses a slab sideways by e |mu| (mu = tan of its angle to
+  // the view), and the slab loop treats that crossing as one step down a
+  // column followed by one sideways move; its error grows with the drift (on
+  // a mesh sphere, rings where surfaces cut the slabs; in a volume, shadows
+  // displaced). Fewer, thicker slabs blur less (each re-samples the light),
+  // so e stays at the step unless a light drifts more than a voxel a slab.
+  const float voxel = view.volume.min_spacing();
+  float drift_e = e;
+  for (const GaussianLight& l : lights) {
+    const float tan = glm::length(l.mu);
+    if (tan * drift_e > voxel) drift_e = voxel / tan;
+  }
+  e = glm::max(drift_e, e / kMaxDriftRefinement);
   return glm::max(e, depth / float(kAutomaticSlabs));
 }
 
@@ -139,7 +153,7 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
   if (!cam.orthographic) z_front = glm::max(z_front, 1e-4f);
   const float box_extent = glm::max(z_back - z_front, 0.0f);
   const float e = settings_.slab_distance_voxels > 0.0f ? settings_.slab_distance_voxels * voxel
-                                                        : automatic_slab_distance(view, shadow, box_extent);
+                                                        : automatic_slab_distance(view, shadow, box_extent, lights);
   const float d1 = settings_.optimal_distance_voxels > 0.0f ? settings_.optimal_distance_voxels * voxel
                                                             : glm::max(0.25f * box_extent, e);
 

@@ -82,9 +82,14 @@ class SlabRenderer {
   int last_tail_slabs() const { return last_tail_slabs_; }
   int rebuilds() const { return meshes_.builds(); }
   static constexpr int kAutomaticSlabs = 4096;  // the most slabs an unset slab_distance gives
+  // An unset slab_distance also keeps every light's sideways drift per slab
+  // (e tan of its angle to the view) within a voxel, taking up to this many
+  // times the slabs the step and the detail give.
+  static constexpr float kMaxDriftRefinement = 4.0f;
 
  private:
-  float automatic_slab_distance(const RenderView& view, const RenderView& shadow, float depth) const;
+  float automatic_slab_distance(const RenderView& view, const RenderView& shadow, float depth,
+                                const std::vector<GaussianLight>& lights) const;
   // Whether the volume has any extinction, for the viewer or through a shadow TF.
   bool volume_has_extinction(const RenderView& view, const RenderView& shadow) const;
   SceneResources resources_;
