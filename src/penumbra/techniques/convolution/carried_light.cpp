@@ -73,7 +73,7 @@ void MediumMask::resize(int frame_width, int frame_height, int channels) {
   width_ = frame_width;
   height_ = frame_height;
   any_.assign(std::size_t(frame_width) * std::size_t(frame_height), 0);
-  depth_.assign(std::size_t(channels) * any_.size(), 0.0f);
+  extinction_.assign(std::size_t(channels) * any_.size(), 0.0f);
   mask_.assign(std::size_t(frame_width + 1) * std::size_t(frame_height + 1), 0);
   any_set_ = false;
 }
@@ -140,29 +140,29 @@ void CarriedLights::advance(int l, float path, const MediumMask& medium, const S
     transmittance_.resize(std::size_t(channels_) * frame_plane);
     parallel_for(0, frame_height_, [&](std::int64_t first, std::int64_t last) {
       for (int c = 0; c < channels_; ++c) {
-        const float* depth = medium.depth(c);
+        const float* extinction = medium.extinction(c);
         float* out = transmittance_.data() + std::size_t(c) * frame_plane;
         const std::size_t begin = std::size_t(first) * std::size_t(frame_width_);
         const std::size_t end = std::size_t(last) * std::size_t(frame_width_);
         for (std::size_t i = begin; i < end; ++i) {
-          out[i] = depth[i] > 0.0f ? exp_nonpositive(-path * depth[i]) : 1.0f;
+          out[i] = extinction[i] > 0.0f ? exp_nonpositive(-path * extinction[i]) : 1.0f;
+        }
+      }
+    });
+    parallel_for(0, g.height, [&](std::int64_t first, std::int64_t last) {
+      for (std::int64_t y = first; y < last; ++y) {
+        for (int x = 0; x < g.width; ++x) {
+          const vec2 p = g.position(x, int(y));
+          if (!medium.touches(p)) continue;
+          t[std::size_t(channels_) * plane + std::size_t(x) + std::size_t(g.width) * std::size_t(y)] = step;
+          for (int c = 0; c < channels_; ++c) {
+            t[std::size_t(c) * plane + std::size_t(x) + std::size_t(g.width) * std::size_t(y)] *=
+                read_buffer(transmittance_.data() + std::size_t(c) * frame_plane, frame_width_, frame_height_, p);
+          }
         }
       }
     });
   }
-  if (medium.any()) parallel_for(0, g.height, [&](std::int64_t first, std::int64_t last) {
-    for (std::int64_t y = first; y < last; ++y) {
-      for (int x = 0; x < g.width; ++x) {
-        const vec2 p = g.position(x, int(y));
-        if (!medium.touches(p)) continue;
-        t[std::size_t(channels_) * plane + std::size_t(x) + std::size_t(g.width) * std::size_t(y)] = step;
-        for (int c = 0; c < channels_; ++c) {
-          t[std::size_t(c) * plane + std::size_t(x) + std::size_t(g.width) * std::size_t(y)] *=
-              read_buffer(transmittance_.data() + std::size_t(c) * frame_plane, frame_width_, frame_height_, p);
-        }
-      }
-    }
-  });
   advance_carried_grid(g, mapping, w);
   if (g.scale < min_scale_) {
     resample_carried_grid(g, t, texels(l, 1 - half), channels_ + 1);

@@ -112,15 +112,16 @@ struct MediumMaskView {
 // Which frame positions have a medium among the four pixels a bilinear read
 // there takes (clamp-to-edge), for one slab: the slab loop flags the pixels
 // where the slab has optical depth, build() dilates the flags once per slab,
-// and a query is one lookup. Beside the flags, the slab's optical depth per
-// pixel (`channels` planes), which the slab loop writes where it flags a
-// pixel and leaves at 0 elsewhere.
+// and a query is one lookup. Beside the flags, the slab's extinction per
+// pixel (`channels` planes: the optical depth along the pixel's column per
+// unit length of a light's path through the slab), which the slab loop writes
+// where it flags a pixel and leaves at 0 elsewhere.
 class MediumMask {
  public:
   void resize(int frame_width, int frame_height, int channels = 1);  // all clear
   std::uint8_t* flags() { return any_.data(); }     // per pixel: 1 where the slab has a medium
-  float* depth(int c = 0) { return depth_.data() + std::size_t(c) * any_.size(); }
-  const float* depth(int c = 0) const { return depth_.data() + std::size_t(c) * any_.size(); }
+  float* extinction(int c = 0) { return extinction_.data() + std::size_t(c) * any_.size(); }
+  const float* extinction(int c = 0) const { return extinction_.data() + std::size_t(c) * any_.size(); }
   void build();
   // Whether the last build() found any flag set (else touches() is false everywhere).
   bool any() const { return any_set_; }
@@ -132,7 +133,7 @@ class MediumMask {
   int width_ = 0, height_ = 0;
   std::vector<std::uint8_t> any_;   // the flags
   std::vector<std::uint8_t> mask_;  // (width + 1) x (height + 1): entry (x0 + 1, y0 + 1) for pixels x0..x0+1, y0..y0+1
-  std::vector<float> depth_;
+  std::vector<float> extinction_;
   bool any_set_ = false;
 };
 
@@ -240,11 +241,11 @@ class CarriedLights {
   bool carries(int l) const { return std::size_t(l) < carried_.size() && carried_[std::size_t(l)]; }
   const CarriedGrid& grid(int l) const { return grids_[std::size_t(l)]; }
 
-  // Slab k > 0, light l: `medium` is slab k - 1's mask and optical depth
-  // (as many channels as the lights), `path` the light's path length through
-  // a slab over its thickness. Texels whose crossing of slab k - 1 touched
-  // the medium are attenuated by exp(-path depth), read bilinearly; then the
-  // grid follows its rays into slab k (`mapping`, w: convolve_texel_mapped's).
+  // Slab k > 0, light l: `medium` is slab k - 1's mask and extinction (as
+  // many channels as the lights), `path` the light's path length through a
+  // slab. Texels whose crossing of slab k - 1 touched the medium are
+  // attenuated by exp(-path extinction), read bilinearly; then the grid
+  // follows its rays into slab k (`mapping`, w: convolve_texel_mapped's).
   void advance(int l, float path, const MediumMask& medium, const SlabMapping& mapping, vec2 w);
   // Then the light entering slab k at every pixel, into `incoming`
   // (`channels` planes): the carried light where it crossed no medium in
@@ -261,7 +262,7 @@ class CarriedLights {
   // (SlabRenderer's empty tail); the texels' age is not checked here.
   vec3 read_clear(int l, float px, float py, const MediumMask& medium, const SlabMapping& mapping, vec2 w) const;
 
-  std::uint64_t bytes() const { return texels_.size() * sizeof(float); }
+  std::uint64_t bytes() const { return (texels_.size() + transmittance_.size()) * sizeof(float); }
   // What propagate reads the carried light as: the active SIMD target when
   // a light is carried and this build has its packets, else Scalar.
   SimdTarget target() const;

@@ -214,7 +214,7 @@ MiniLoop mini_loop(bool carry, float haze, int thick = 1, float block = 50.0f) {
         medium.resize(kW, kH);
         for (std::size_t i = 0; i < pixels; ++i) {
           medium.flags()[i] = depth[i] > 0.0f;
-          medium.depth()[i] = depth[i];
+          medium.extinction()[i] = depth[i];
         }
         medium.build();
         carried.advance(0, 1.0f, medium, m, w);

@@ -295,13 +295,13 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
   }
   const int clear_slabs = drift * float(kMaxClearSlabs) > 1.0f ? int(std::ceil(1.0f / drift)) : kMaxClearSlabs;
   carried_.start(width, height, channels, min_scale, clear_slabs, carried);
-  // Where the last slab has a medium and its optical depth there (what the
+  // Where the last slab has a medium and its extinction there (what the
   // carried grids test and are attenuated by).
   MediumMask medium;
   if (any_carried) medium.resize(width, height, channels);
   std::uint8_t* const has_medium = any_carried ? medium.flags() : nullptr;
-  float* slab_depth[3] = {nullptr, nullptr, nullptr};
-  for (int c = 0; c < channels && any_carried; ++c) slab_depth[c] = medium.depth(c);
+  float* slab_extinction[3] = {nullptr, nullptr, nullptr};
+  for (int c = 0; c < channels && any_carried; ++c) slab_extinction[c] = medium.extinction(c);
   const SlabFrame frame{cam, width, height, e};
   const float min_transmittance = 1.0f - view.ert_threshold;
   const bool separate_shadow_tf = scene.shadow_transfer_function().has_value();
@@ -468,7 +468,7 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
             PixelState& p = px[i];
             if (has_medium) {
               has_medium[i] = 0;
-              for (int c = 0; c < channels; ++c) slab_depth[c][i] = 0.0f;
+              for (int c = 0; c < channels; ++c) slab_extinction[c][i] = 0.0f;
             }
             if (slanted) slanted_.clear(i, !p.done);
             if (p.done) continue;  // behind an opaque plane: nothing of this pixel is left to see or to shadow
@@ -634,7 +634,7 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
             const vec3 optical_depth = volume_shadow + mesh_shadow;
             if (has_medium) {
               has_medium[i] = max_component(optical_depth) > 0.0f;
-              for (int c = 0; c < channels; ++c) slab_depth[c][i] = optical_depth[c];
+              for (int c = 0; c < channels; ++c) slab_extinction[c][i] = optical_depth[c];
             }
             if (slanted) {  // attenuated after the loop, along the paths
               if (cover.length > 0.0f) slanted_.record_mesh(i, mesh_shadow * (e / cover.length));
