@@ -71,7 +71,11 @@ ConvolveRow convolve_row_function(const SlabKernel& kernel, std::size_t pixels) 
 
 void convolve_slab(const SlabFrame& frame, const SlabKernel& kernel, const float* previous, float* incoming,
                    float depth) {
-  const SlabMapping mapping = slab_mapping(frame, depth);
+  convolve_slab(frame, slab_mapping(frame, depth), kernel, previous, incoming);
+}
+
+void convolve_slab(const SlabFrame& frame, const SlabMapping& mapping, const SlabKernel& kernel, const float* previous,
+                   float* incoming) {
   const bool rows = kernel.count > 1 && !kernel.rotate_per_pixel;
   const ConvolveRow packets = convolve_row_function(kernel, std::size_t(frame.width) * std::size_t(frame.height));
   parallel_for(0, frame.height, [&](std::int64_t first, std::int64_t last) {

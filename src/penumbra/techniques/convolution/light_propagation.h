@@ -226,5 +226,8 @@ ConvolveRow convolve_row_function(const SlabKernel& kernel, std::size_t pixels);
 // (convolve_texel_mapped).
 void convolve_slab(const SlabFrame& frame, const SlabKernel& kernel, const float* previous, float* incoming,
                    float depth);
+// The same through a given map (a point light's, slab_renderer.cpp).
+void convolve_slab(const SlabFrame& frame, const SlabMapping& mapping, const SlabKernel& kernel, const float* previous,
+                   float* incoming);
 
 }  // namespace penumbra

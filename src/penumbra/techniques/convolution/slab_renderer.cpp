@@ -303,6 +303,52 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
   float* slab_extinction[3] = {nullptr, nullptr, nullptr};
   for (int c = 0; c < channels && any_carried; ++c) slab_extinction[c] = medium.extinction(c);
   const SlabFrame frame{cam, width, height, e};
+  // A hard point light in front of the slabs diverges: the light reaching
+  // lateral position X (camera right and up, world units) on the slab at depth
+  // z came from L + r (X - L) on the slab before, r = (z - e - z_L) /
+  // (z - z_L), L and z_L the light's lateral position and depth. On the pixel
+  // grid that is the camera's slab map scaled by r, plus a single tap at the
+  // constant lateral offset -(1 - r) L. Other lights (soft ones, a point
+  // light beside or behind the slabs, and any light in a scene with meshes,
+  // whose slanted paths take one drift per light) travel in one direction,
+  // from the light toward the box's centre (gaussian_light.h).
+  struct PointMap {
+    bool on = false;
+    vec2 lateral{0.0f};
+    float depth = 0.0f;
+  };
+  std::vector<PointMap> point_maps(static_cast<std::size_t>(light_count));
+  for (std::size_t i = 0; i < scene.lights().size(); ++i) {
+    const int l = slot_of[i];
+    const Light& light = scene.lights()[i];
+    if (l < 0 || light.type != LightType::Point || has_meshes) continue;
+    if (kernels[std::size_t(l)].sample_count() != 1) continue;
+    const vec3 d = light.position - cam.eye;
+    const float depth = glm::dot(d, cam.forward);
+    if (!(depth < z_front - e)) continue;
+    point_maps[std::size_t(l)] = PointMap{true, vec2(glm::dot(d, cam.right), glm::dot(d, cam.up)), depth};
+  }
+  vec2 point_taps[kMaxLights];
+  const float unit_weight = 1.0f;
+  // Light l's kernel for slab k (middle depth z), the map from its pixels to
+  // the slab before, and the pixel offset w of the kernel's single tap.
+  auto light_map = [&](int l, int k, float z, SlabKernel& kernel, SlabMapping& m, vec2& w) {
+    kernel = kernels[std::size_t(l)].for_slab(k);
+    m = slab_mapping(frame, z);
+    const PointMap& pm = point_maps[std::size_t(l)];
+    if (pm.on) {
+      const float r = (z - e - pm.depth) / (z - pm.depth);
+      m.scale *= r;
+      point_taps[l] = -(1.0f - r) * pm.lateral;
+      kernel.taps = &point_taps[l];
+      kernel.weights = &unit_weight;
+      kernel.count = 1;
+      kernel.rotate_per_pixel = false;
+      kernel.mean = point_taps[l];
+    }
+    const vec2 o = kernel.offset(0, 1.0f, 0.0f);
+    w = m.pixels_per_unit * vec2(-o.x, o.y);
+  };
   const float min_transmittance = 1.0f - view.ert_threshold;
   const bool separate_shadow_tf = scene.shadow_transfer_function().has_value();
   std::atomic<std::uint64_t> samples{0};
@@ -379,14 +425,12 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
     vec2 offsets[kMaxLights];
     const int next = 1 - current;
     for (int l = 0; l < light_count; ++l) {
-      const SlabKernel kernel = kernels[std::size_t(l)].for_slab(k);
+      SlabKernel kernel;
+      light_map(l, k, z, kernel, maps[l], offsets[l]);
       if (!carried[std::size_t(l)]) {
-        for (int c = 0; c < channels; ++c) convolve_slab(frame, kernel, buffer(l, current, c), buffer(l, next, c), z);
+        for (int c = 0; c < channels; ++c) convolve_slab(frame, maps[l], kernel, buffer(l, current, c), buffer(l, next, c));
         continue;
       }
-      maps[l] = slab_mapping(frame, z);
-      const vec2 o = kernel.offset(0, 1.0f, 0.0f);
-      offsets[l] = maps[l].pixels_per_unit * vec2(-o.x, o.y);
       carried_.advance(l, light_path[std::size_t(l)], medium, maps[l], offsets[l]);  // the mask is empty: the grid moves
     }
     current = next;  // a carried light's buffers are left stale: only the last slab reads them, where none is needed
@@ -446,16 +490,16 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
       if (slanted) slanted_.enter_slab(frame, z, light_means);
       for (int l = 0; l < light_count; ++l) {
         if (k == 0) continue;  // buffers start unoccluded
-        const SlabKernel kernel = kernels[std::size_t(l)].for_slab(k);
+        SlabKernel kernel;
+        SlabMapping m;
+        vec2 w;
+        light_map(l, k, z, kernel, m, w);
         if (carried[std::size_t(l)]) {
-          const SlabMapping m = slab_mapping(frame, z);
-          const vec2 o = kernel.offset(0, 1.0f, 0.0f);
-          const vec2 w = m.pixels_per_unit * vec2(-o.x, o.y);
           carried_.advance(l, light_path[std::size_t(l)], medium, m, w);
           carried_.propagate(l, frame, kernel, buffer(l, current), buffer(l, next), medium, m, w);
           continue;
         }
-        for (int c = 0; c < channels; ++c) convolve_slab(frame, kernel, buffer(l, current, c), buffer(l, next, c), z);
+        for (int c = 0; c < channels; ++c) convolve_slab(frame, m, kernel, buffer(l, current, c), buffer(l, next, c));
       }
       if (k > 0) current = next;
       parallel_for(0, height, [&](std::int64_t first, std::int64_t last) {
