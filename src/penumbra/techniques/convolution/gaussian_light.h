@@ -25,7 +25,8 @@
 //   directional: Sigma = 0 (hard shadows);
 //   point, sphere, disk: a distant light from the light's position toward
 //     the box centre (the method has only distant lights); a point light is
-//     directional (Sigma = 0), a sphere or disk of radius r at distance D
+//     directional (Sigma = 0; one in front of every slab diverges instead,
+//     through its own slab map: slab_renderer.cpp), a sphere or disk of radius r at distance D
 //     from the box centre the uniform cone of the angle it subtends there,
 //     tan = r / sqrt(D^2 - r^2) (the box centre as the one representative
 //     receiver: the method's light is the same for every slab and pixel);
