@@ -130,11 +130,10 @@ float* CarriedLights::texels(int l, int half) {
 }
 
 void CarriedLights::advance(int l, float path, const MediumMask& medium, const SlabMapping& mapping, vec2 w) {
-  CarriedGrid& g = grids_[std::size_t(l)];
-  int& half = half_[std::size_t(l)];
-  float* t = texels(l, half);
+  const CarriedGrid& g = grids_[std::size_t(l)];
+  float* t = texels(l, half_[std::size_t(l)]);
   const std::size_t plane = std::size_t(g.width) * std::size_t(g.height);
-  const float step = float(++steps_[std::size_t(l)]);
+  const float step = next_step(l);
   const std::size_t frame_plane = std::size_t(frame_width_) * std::size_t(frame_height_);
   if (medium.any()) {  // the slab's transmittance per pixel, for the texels' bilinear reads
     transmittance_.resize(std::size_t(channels_) * frame_plane);
@@ -163,6 +162,13 @@ void CarriedLights::advance(int l, float path, const MediumMask& medium, const S
       }
     });
   }
+  move(l, mapping, w);
+}
+
+void CarriedLights::move(int l, const SlabMapping& mapping, vec2 w) {
+  CarriedGrid& g = grids_[std::size_t(l)];
+  int& half = half_[std::size_t(l)];
+  float* t = texels(l, half);
   advance_carried_grid(g, mapping, w);
   if (g.scale < min_scale_) {
     resample_carried_grid(g, t, texels(l, 1 - half), channels_ + 1);

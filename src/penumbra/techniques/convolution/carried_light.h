@@ -40,6 +40,16 @@
 // re-sampled), where the re-sampled light has come down the pixel's own
 // column.
 //
+// Where the volume is the only medium (no meshes), a texel that touches it
+// samples the volume on its own ray at the slab's middle instead
+// (advance_sampled): one trilinear sample and TF lookup, not the bilinear
+// read of the four pixel columns' transmittances. Those weights cycle as
+// the texels drift past the columns, and under a thin translucent sheet the
+// cycle printed a moire into its shadow (the head CT's floor: structured
+// error halved; docs/convolution.md, "Texels that sample the volume"). A
+// sharp step in the medium is then placed to within half a texel rather
+// than blurred over one.
+//
 // Two re-bases keep the grid over the frame: an integer shift of the texels
 // (an exact copy) whenever |offset| passes a few texels, so the grid follows
 // light that drifts sideways; and a re-sampling onto the pixel grid when a
@@ -50,6 +60,7 @@
 #include "penumbra/backends/cpu/packets.h"
 #include "penumbra/base/lanes.h"
 #include "penumbra/base/math.h"
+#include "penumbra/base/parallel.h"
 #include "penumbra/techniques/convolution/light_propagation.h"
 
 #include <cmath>
@@ -247,6 +258,14 @@ class CarriedLights {
   // attenuated by exp(-path extinction), read bilinearly; then the grid
   // follows its rays into slab k (`mapping`, w: convolve_texel_mapped's).
   void advance(int l, float path, const MediumMask& medium, const SlabMapping& mapping, vec2 w);
+  // The same where the volume is the only medium: a texel whose crossing of
+  // slab k - 1 touched the medium is attenuated by exp(-path
+  // extinction_at(p)), the volume's extinction toward the light (per unit
+  // path) sampled on the texel's own ray, p its frame pixel coordinates on
+  // slab k - 1. The mask's extinction planes are not read.
+  template <class Extinction>
+  void advance_sampled(int l, float path, const MediumMask& medium, const SlabMapping& mapping, vec2 w,
+                       const Extinction& extinction_at);
   // Then the light entering slab k at every pixel, into `incoming`
   // (`channels` planes): the carried light where it crossed no medium in
   // slab k - 1 (and the texels read have been clear for `min_age` slabs),
@@ -272,6 +291,9 @@ class CarriedLights {
   // `channels_` planes of light, then one of the step (advance) at which each
   // texel last touched a medium (re-bases copy it with the light).
   float* texels(int l, int half);
+  float next_step(int l) { return float(++steps_[std::size_t(l)]); }
+  // The grid follows its rays into the next slab (and is re-based if needed).
+  void move(int l, const SlabMapping& mapping, vec2 w);
   CarriedReadView read_view(int l, const MediumMask& medium, const SlabMapping& mapping, vec2 w) const;
 
   int frame_width_ = 0, frame_height_ = 0, channels_ = 1, min_age_ = 1;
@@ -284,5 +306,31 @@ class CarriedLights {
   std::vector<float> texels_;
   std::vector<float> transmittance_;  // the last slab's, per channel and frame pixel (advance's scratch)
 };
+
+template <class Extinction>
+void CarriedLights::advance_sampled(int l, float path, const MediumMask& medium, const SlabMapping& mapping, vec2 w,
+                                    const Extinction& extinction_at) {
+  const CarriedGrid& g = grids_[std::size_t(l)];
+  float* t = texels(l, half_[std::size_t(l)]);
+  const std::size_t plane = std::size_t(g.width) * std::size_t(g.height);
+  const float step = next_step(l);
+  if (medium.any()) {
+    parallel_for(0, g.height, [&](std::int64_t first, std::int64_t last) {
+      for (std::int64_t y = first; y < last; ++y) {
+        for (int x = 0; x < g.width; ++x) {
+          const vec2 p = g.position(x, int(y));
+          if (!medium.touches(p)) continue;
+          const std::size_t i = std::size_t(x) + std::size_t(g.width) * std::size_t(y);
+          t[std::size_t(channels_) * plane + i] = step;
+          const float sigma = extinction_at(p);
+          if (!(sigma > 0.0f)) continue;
+          const float transmittance = exp_nonpositive(-path * sigma);
+          for (int c = 0; c < channels_; ++c) t[std::size_t(c) * plane + i] *= transmittance;
+        }
+      }
+    });
+  }
+  move(l, mapping, w);
+}
 
 }  // namespace penumbra

@@ -141,10 +141,11 @@ TEST(Convolution, ZeroVarianceMatchesShadowRays) {
 
 // Hard shadows at every image size (issue 23): with light carried along its
 // rays across empty space (carried_light.h) the edge scene's 10-90 % floor
-// width is 1.60 / 1.75 / 1.86 px at 64^2 / 128^2 / 256^2; re-sampled every
+// width is 1.15 / 1.65 / 1.68 px at 64^2 / 128^2 / 256^2; re-sampled every
 // slab (carried_light=false) it was 3.32 / 3.47 / 2.96; shadow-rays 1.42 /
-// 0.84 / 0.84. The half-shadow line is within 0.17 / 0.21 / 0.19 px of
-// shadow-rays'.
+// 0.84 / 0.84. The half-shadow line is within 0.78 / 0.07 / 0.32 px of
+// shadow-rays' (texels that sample the occluder place its edge to within
+// half a texel).
 TEST(Convolution, HardShadowsStayNarrowAtEverySize) {
   for (int size : {64, 128, 256}) {
     const Scene scene = edge_scene(size);

@@ -478,6 +478,27 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
     auto tf_lookup = [&](const TransferFunctionView& tf, float value) {
       return Sampler::kAlwaysFinite ? tf.lookup_finite(value) : tf.lookup(value);
     };
+    // Where the volume is the only medium, a carried texel that crosses it
+    // samples it on its own ray (carried_light.h, advance_sampled): the
+    // extinction toward the lights (per unit path) at frame pixel
+    // coordinates q of the slab at depth `depth`; outside the box and the
+    // clip planes, none. With meshes the texels read the pixels' optical
+    // depth, which holds the meshes' too; so do those of a point light in
+    // front of the slabs, whose grid spreads to texels several pixels apart
+    // (a sample per texel would place a sharp edge only to within half of
+    // one: 0.97 px off in Convolution.PointLightShadowsDiverge, 0.04 px
+    // reading the columns); and with preintegration, whose columns hold the
+    // segments' optical depth rather than a sample's.
+    auto texel_extinction = [&](float depth) {
+      return [&, depth](vec2 q) {
+        const Ray ray = cam.pixel_ray(q.x, q.y, width, height);
+        const vec3 pos = ray.at(depth / glm::dot(ray.direction, cam.forward));
+        if (!view.box.contains(pos) || !inside_clip_planes(pos, view.clip_planes, view.clip_plane_count)) return 0.0f;
+        const vec3 index = view.volume.index_from_world(pos);
+        return shadow.majorant_at(index) > 0.0f ? tf_lookup(shadow.tf, sampler(index)).a : 0.0f;
+      };
+    };
+    const bool sampled_texels = !has_meshes && !use_preintegration;
     for (int k = 0; k < slabs; ++k) {
       const float z = z_front + (float(k) + 0.5f) * e;
       const float z0 = z - 0.5f * e, z1 = z + 0.5f * e;
@@ -496,7 +517,11 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
         vec2 w;
         light_map(l, k, z, kernel, m, w);
         if (carried[std::size_t(l)]) {
-          carried_.advance(l, light_path[std::size_t(l)], medium, m, w);
+          if (sampled_texels && !point_maps[std::size_t(l)].on) {
+            carried_.advance_sampled(l, light_path[std::size_t(l)], medium, m, w, texel_extinction(z - e));
+          } else {
+            carried_.advance(l, light_path[std::size_t(l)], medium, m, w);
+          }
           carried_.propagate(l, frame, kernel, buffer(l, current), buffer(l, next), medium, m, w);
           continue;
         }
