@@ -101,8 +101,10 @@ float SlabRenderer::automatic_slab_distance(const RenderView& view, const Render
   // the view), and the slab loop treats that crossing as one step down a
   // column followed by one sideways move; its error grows with the drift (on
   // a mesh sphere, rings where surfaces cut the slabs; in a volume, shadows
-  // displaced). Thinner slabs also cost accuracy in volumes (measured, not
-  // diagnosed: docs/convolution.md), so e stays at the step unless a light
+  // displaced). Thinner slabs also cost accuracy in volumes (the grid's
+  // reads smooth the medium about a pixel out of a lit face, a bias that the
+  // slabs' own error cancels near the step: docs/convolution.md, "Why
+  // thinner slabs darken a lit face"), so e stays at the step unless a light
   // drifts more than a voxel a slab.
   const float voxel = view.volume.min_spacing();
   float drift_e = e;
