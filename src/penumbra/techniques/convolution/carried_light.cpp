@@ -1,5 +1,6 @@
 #include "penumbra/techniques/convolution/carried_light.h"
 
+#include "penumbra/base/error.h"
 #include "penumbra/base/parallel.h"
 
 #include <algorithm>
@@ -96,6 +97,9 @@ void MediumMask::build() {
 
 void CarriedLights::start(int frame_width, int frame_height, int channels, float min_scale, int min_age,
                           const std::vector<char>& carried) {
+  if (channels < 1 || channels > CarriedReadView::kMaxChannels) {
+    throw InvalidArgument("channels", "carried light grids hold 1 to 3 colour channels");
+  }
   min_age_ = min_age;
   frame_width_ = frame_width;
   frame_height_ = frame_height;
@@ -130,10 +134,6 @@ float* CarriedLights::texels(int l, int half) {
 }
 
 void CarriedLights::advance(int l, float path, const MediumMask& medium, const SlabMapping& mapping, vec2 w) {
-  const CarriedGrid& g = grids_[std::size_t(l)];
-  float* t = texels(l, half_[std::size_t(l)]);
-  const std::size_t plane = std::size_t(g.width) * std::size_t(g.height);
-  const float step = next_step(l);
   const std::size_t frame_plane = std::size_t(frame_width_) * std::size_t(frame_height_);
   if (medium.any()) {  // the slab's transmittance per pixel, for the texels' bilinear reads
     transmittance_.resize(std::size_t(channels_) * frame_plane);
@@ -148,20 +148,12 @@ void CarriedLights::advance(int l, float path, const MediumMask& medium, const S
         }
       }
     });
-    parallel_for(0, g.height, [&](std::int64_t first, std::int64_t last) {
-      for (std::int64_t y = first; y < last; ++y) {
-        for (int x = 0; x < g.width; ++x) {
-          const vec2 p = g.position(x, int(y));
-          if (!medium.touches(p)) continue;
-          t[std::size_t(channels_) * plane + std::size_t(x) + std::size_t(g.width) * std::size_t(y)] = step;
-          for (int c = 0; c < channels_; ++c) {
-            t[std::size_t(c) * plane + std::size_t(x) + std::size_t(g.width) * std::size_t(y)] *=
-                read_buffer(transmittance_.data() + std::size_t(c) * frame_plane, frame_width_, frame_height_, p);
-          }
-        }
-      }
-    });
   }
+  attenuate_touched(l, medium, [&](vec2 p, float* out) {
+    for (int c = 0; c < channels_; ++c) {
+      out[c] = read_buffer(transmittance_.data() + std::size_t(c) * frame_plane, frame_width_, frame_height_, p);
+    }
+  });
   move(l, mapping, w);
 }
 

@@ -291,7 +291,11 @@ class CarriedLights {
   // `channels_` planes of light, then one of the step (advance) at which each
   // texel last touched a medium (re-bases copy it with the light).
   float* texels(int l, int half);
-  float next_step(int l) { return float(++steps_[std::size_t(l)]); }
+  // Counts the step, then multiplies each texel whose crossing of the last
+  // slab touched `medium` (and marks it touched now) by transmittance(p,
+  // out): `channels_` values into out, p the texel's frame pixel coordinates.
+  template <class Transmittance>
+  void attenuate_touched(int l, const MediumMask& medium, const Transmittance& transmittance);
   // The grid follows its rays into the next slab (and is re-based if needed).
   void move(int l, const SlabMapping& mapping, vec2 w);
   CarriedReadView read_view(int l, const MediumMask& medium, const SlabMapping& mapping, vec2 w) const;
@@ -307,29 +311,36 @@ class CarriedLights {
   std::vector<float> transmittance_;  // the last slab's, per channel and frame pixel (advance's scratch)
 };
 
-template <class Extinction>
-void CarriedLights::advance_sampled(int l, float path, const MediumMask& medium, const SlabMapping& mapping, vec2 w,
-                                    const Extinction& extinction_at) {
+template <class Transmittance>
+void CarriedLights::attenuate_touched(int l, const MediumMask& medium, const Transmittance& transmittance) {
   const CarriedGrid& g = grids_[std::size_t(l)];
   float* t = texels(l, half_[std::size_t(l)]);
   const std::size_t plane = std::size_t(g.width) * std::size_t(g.height);
-  const float step = next_step(l);
-  if (medium.any()) {
-    parallel_for(0, g.height, [&](std::int64_t first, std::int64_t last) {
-      for (std::int64_t y = first; y < last; ++y) {
-        for (int x = 0; x < g.width; ++x) {
-          const vec2 p = g.position(x, int(y));
-          if (!medium.touches(p)) continue;
-          const std::size_t i = std::size_t(x) + std::size_t(g.width) * std::size_t(y);
-          t[std::size_t(channels_) * plane + i] = step;
-          const float sigma = extinction_at(p);
-          if (!(sigma > 0.0f)) continue;
-          const float transmittance = exp_nonpositive(-path * sigma);
-          for (int c = 0; c < channels_; ++c) t[std::size_t(c) * plane + i] *= transmittance;
-        }
+  const float step = float(++steps_[std::size_t(l)]);
+  if (!medium.any()) return;
+  parallel_for(0, g.height, [&](std::int64_t first, std::int64_t last) {
+    float through[CarriedReadView::kMaxChannels];
+    for (std::int64_t y = first; y < last; ++y) {
+      for (int x = 0; x < g.width; ++x) {
+        const vec2 p = g.position(x, int(y));
+        if (!medium.touches(p)) continue;
+        const std::size_t i = std::size_t(x) + std::size_t(g.width) * std::size_t(y);
+        t[std::size_t(channels_) * plane + i] = step;
+        transmittance(p, through);
+        for (int c = 0; c < channels_; ++c) t[std::size_t(c) * plane + i] *= through[c];
       }
-    });
-  }
+    }
+  });
+}
+
+template <class Extinction>
+void CarriedLights::advance_sampled(int l, float path, const MediumMask& medium, const SlabMapping& mapping, vec2 w,
+                                    const Extinction& extinction_at) {
+  attenuate_touched(l, medium, [&](vec2 p, float* out) {
+    const float sigma = extinction_at(p);
+    const float through = sigma > 0.0f ? exp_nonpositive(-path * sigma) : 1.0f;
+    for (int c = 0; c < channels_; ++c) out[c] = through;
+  });
   move(l, mapping, w);
 }
 

@@ -26,9 +26,15 @@ struct SlabFrame {
   float slab_distance = 1.0f;  // e, world units
 };
 
-PENUMBRA_HD inline vec3 slab_point(const SlabFrame& f, int x, int y, float depth) {
-  const Ray ray = f.camera.pixel_ray(float(x) + 0.5f, float(y) + 0.5f, f.width, f.height);
+// The world point at `depth` (along the camera's forward axis) on the
+// viewing ray through frame pixel coordinates p (pixel centres at +0.5).
+PENUMBRA_HD inline vec3 slab_point(const SlabFrame& f, vec2 p, float depth) {
+  const Ray ray = f.camera.pixel_ray(p.x, p.y, f.width, f.height);
   return ray.origin + ray.direction * (depth / glm::dot(ray.direction, f.camera.forward));
+}
+// The same at pixel (x, y)'s centre.
+PENUMBRA_HD inline vec3 slab_point(const SlabFrame& f, int x, int y, float depth) {
+  return slab_point(f, vec2(float(x) + 0.5f, float(y) + 0.5f), depth);
 }
 
 // Continuous pixel coordinates (texel centres at +0.5) of a world point.

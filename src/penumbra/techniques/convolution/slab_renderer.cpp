@@ -480,11 +480,17 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
     auto tf_lookup = [&](const TransferFunctionView& tf, float value) {
       return Sampler::kAlwaysFinite ? tf.lookup_finite(value) : tf.lookup(value);
     };
+    // The volume's extinction toward the lights at world point q (per unit
+    // path): none outside the box and the clip planes or in empty space.
+    auto shadow_extinction = [&](vec3 q) {
+      if (!view.box.contains(q) || !inside_clip_planes(q, view.clip_planes, view.clip_plane_count)) return 0.0f;
+      const vec3 index = view.volume.index_from_world(q);
+      return shadow.majorant_at(index) > 0.0f ? tf_lookup(shadow.tf, sampler(index)).a : 0.0f;
+    };
     // Where the volume is the only medium, a carried texel that crosses it
     // samples it on its own ray (carried_light.h, advance_sampled): the
-    // extinction toward the lights (per unit path) at frame pixel
-    // coordinates q of the slab at depth `depth`; outside the box and the
-    // clip planes, none. With meshes the texels read the pixels' optical
+    // extinction at frame pixel coordinates q of the slab at depth `depth`.
+    // With meshes the texels read the pixels' optical
     // depth, which holds the meshes' too; so do those of a point light in
     // front of the slabs, whose grid spreads to texels several pixels apart
     // (a sample per texel would place a sharp edge only to within half of
@@ -492,13 +498,7 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
     // reading the columns); and with preintegration, whose columns hold the
     // segments' optical depth rather than a sample's.
     auto texel_extinction = [&](float depth) {
-      return [&, depth](vec2 q) {
-        const Ray ray = cam.pixel_ray(q.x, q.y, width, height);
-        const vec3 pos = ray.at(depth / glm::dot(ray.direction, cam.forward));
-        if (!view.box.contains(pos) || !inside_clip_planes(pos, view.clip_planes, view.clip_plane_count)) return 0.0f;
-        const vec3 index = view.volume.index_from_world(pos);
-        return shadow.majorant_at(index) > 0.0f ? tf_lookup(shadow.tf, sampler(index)).a : 0.0f;
-      };
+      return [&, depth](vec2 q) { return shadow_extinction(slab_point(frame, q, depth)); };
     };
     const bool sampled_texels = !has_meshes && !use_preintegration;
     for (int k = 0; k < slabs; ++k) {
@@ -672,11 +672,7 @@ void SlabRenderer::render(const Scene& scene, Image& image, RenderStats* stats) 
                 for (int l = 0; l < light_count; ++l) {
                   const float half_path = 0.5f * fraction * light_path[std::size_t(l)];
                   const vec3 q = volume_pos - 0.5f * half_path * light_travel[std::size_t(l)];
-                  float sigma = 0.0f;
-                  if (view.box.contains(q) && inside_clip_planes(q, view.clip_planes, view.clip_plane_count)) {
-                    const vec3 qi = view.volume.index_from_world(q);
-                    if (shadow.majorant_at(qi) > 0.0f) sigma = tf_lookup(shadow.tf, sampler(qi)).a;
-                  }
+                  const float sigma = shadow_extinction(q);
                   // With slanted paths: the box's depth along the light's path
                   // from the slab's front to the part's back.
                   const float inside = slanted ? slanted_.inside_box(l, x, int(y), s1, s1) : s1 - s0;
